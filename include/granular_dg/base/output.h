@@ -1,0 +1,77 @@
+#pragma once
+
+#include <chrono>
+#include <fstream>
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace granular_dg
+{
+  /// Numbers in every file the program writes: 12 significant digits.
+  std::string
+  format_number(double x);
+
+  /// A flat JSON object with keys in insertion order (summary.json).
+  class JsonObject
+  {
+  public:
+    void add(const std::string &key, double value);
+    void add(const std::string &key, long long value);
+    void add(const std::string &key, unsigned int value) { add(key, static_cast<long long>(value)); }
+    void add(const std::string &key, const std::string &value);
+    void add(const std::string &key, const char *value) { add(key, std::string(value)); }
+    void add(const std::string &key, const std::vector<double> &values);
+    void add_object(const std::string &key, const JsonObject &object);
+    std::string str(unsigned int indent = 0) const;
+    /// Write to a temporary file and rename, so a reader never sees half.
+    void write(const std::string &filename) const;
+
+  private:
+    std::vector<std::pair<std::string, std::string>> items;
+  };
+
+  /// A CSV file written row by row and flushed after each row, so a run
+  /// that dies still leaves every finished row.
+  class CsvWriter
+  {
+  public:
+    CsvWriter() = default;
+    void open(const std::string &filename, const std::vector<std::string> &header,
+              const std::string &comment = "");
+    void row(const std::vector<double> &values);
+    bool is_open() const { return out.is_open(); }
+
+  private:
+    std::ofstream out;
+  };
+
+  /// The output directory of a run: created if missing, refused if it holds
+  /// a previous run's results unless overwrite is set, checked for writing.
+  /// Errors name the parameter 'Output/directory'.
+  void
+  prepare_output_directory(const std::string &directory, bool overwrite);
+
+  /// ParaView's time-series index: solution.pvd with the physical times.
+  void
+  write_pvd(const std::string &filename,
+            const std::vector<std::pair<double, std::string>> &records);
+
+  /// Progress with percentage and ETA, at most every interval seconds
+  /// (interval 0: silent).
+  class Progress
+  {
+  public:
+    Progress(double t_start, double t_end, double interval_s);
+    void update(unsigned long step, double t, double dt);
+
+  private:
+    using Clock = std::chrono::steady_clock;
+    double            t_start, t_end, interval;
+    Clock::time_point wall_start, last_print;
+  };
+
+  /// "1 h 02 min", "3 min 12 s", "4.2 s"
+  std::string
+  format_duration(double seconds);
+} // namespace granular_dg

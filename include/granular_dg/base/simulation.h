@@ -1,0 +1,119 @@
+#pragma once
+
+#include <deal.II/base/function.h>
+#include <deal.II/base/parameter_handler.h>
+#include <deal.II/grid/tria.h>
+
+#include <granular_dg/base/output.h>
+#include <granular_dg/dg/boundary.h>
+#include <granular_dg/dg/limiter.h>
+#include <granular_dg/dg/numerical_flux.h>
+
+#include <array>
+#include <functional>
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace granular_dg
+{
+  using namespace dealii;
+
+  /// Parameters every scene shares: discretisation, time stepping, limiter,
+  /// output, convergence study. Scenes add their own sections.
+  struct CommonParameters
+  {
+    unsigned int      degree = 2;
+    dg::NumericalFlux flux   = dg::NumericalFlux::local_lax_friedrichs;
+
+    double        final_time = 1.;
+    double        cfl        = 0.2;
+    unsigned long max_steps  = 0;
+
+    dg::LimiterType limiter = dg::LimiterType::none;
+    double          tvb_M   = 0.;
+
+    std::string         directory = "output";
+    bool                overwrite = false;
+    std::vector<double> output_times;
+    double              output_interval    = 0.;
+    unsigned int        profile_points     = 0;
+    bool                write_vtu          = true;
+    double              progress_interval  = 5.;
+
+    bool                      convergence = false;
+    std::vector<unsigned int> convergence_degrees;
+    std::vector<unsigned int> convergence_cells;
+
+    /// Declare the shared sections; fluxes lists the numerical fluxes the
+    /// scene's physics offers.
+    static void
+    declare(ParameterHandler &prm, const std::string &fluxes);
+    void
+    parse(ParameterHandler &prm);
+  };
+
+  /// What a scene hands to the solver: its physics, mesh, boundary and
+  /// initial data and, where known, the exact solution (conserved variables).
+  template <int dim, typename Physics>
+  struct SceneData
+  {
+    std::string                          scene;
+    Physics                              physics;
+    std::shared_ptr<Triangulation<dim>>  triangulation;
+    dg::BoundaryMap<dim>                 boundary;
+    std::shared_ptr<Function<dim>>       initial;
+    std::shared_ptr<Function<dim>>       exact;
+  };
+
+  /// The outcome of one run, for summary.json and the convergence table.
+  struct RunResult
+  {
+    std::string                      status = "completed";
+    unsigned long                    n_steps = 0;
+    double                           final_time = 0;
+    double                           wall_time_s = 0;
+    double                           time_loop_s = 0;
+    double                           dof_updates_per_s = 0;
+    unsigned long                    n_dofs = 0, n_cells = 0;
+    double                           h_min = 0;
+    /// per component (L1, L2, Linf) against the exact solution, if any
+    std::vector<std::array<double, 3>> errors;
+    double                           l2_error = -1; ///< all components
+    JsonObject                       diagnostics;
+  };
+
+  /// Run one scene: time loop, output, diagnostics. When write_files is
+  /// false (convergence studies) nothing is written. dt_factor scales the
+  /// CFL time step.
+  template <int dim, typename Physics>
+  RunResult
+  run_simulation(const SceneData<dim, Physics> &scene,
+                 const CommonParameters        &params,
+                 unsigned int                   degree,
+                 bool                           write_files,
+                 double                         dt_factor = 1.);
+
+  /// The convergence study of Convergence/degrees x Convergence/cells: one run
+  /// per pair (the scene factory builds the mesh with the given number of
+  /// cells), errors against the exact solution, EOC, written to
+  /// convergence.csv and convergence-rates.csv. For degree p the time step
+  /// is scaled with (h/h_0)^(max(1,(p+1)/3) - 1) so that SSP-RK3's O(dt^3)
+  /// error stays below the spatial O(h^(p+1)) one.
+  template <int dim, typename Physics>
+  void
+  run_convergence_study(
+    const std::function<SceneData<dim, Physics>(unsigned int)> &make_scene,
+    const CommonParameters                                     &params);
+
+  /// Create (or, with Output/overwrite, clear) the output directory and write
+  /// parameters.prm, the parameters actually used. Call after all input has
+  /// been validated, so that bad input leaves nothing behind.
+  void
+  begin_output(const ParameterHandler &prm, const CommonParameters &params);
+
+  /// Write summary.json of a run.
+  void
+  write_summary(const std::string &directory, const std::string &scene, int dim,
+                unsigned int degree, const RunResult &result);
+} // namespace granular_dg

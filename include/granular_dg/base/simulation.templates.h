@@ -1,0 +1,511 @@
+#pragma once
+
+#include <deal.II/base/quadrature.h>
+#include <deal.II/base/timer.h>
+#include <deal.II/base/utilities.h>
+#include <deal.II/dofs/dof_handler.h>
+#include <deal.II/fe/fe_dgq.h>
+#include <deal.II/fe/fe_system.h>
+#include <deal.II/fe/fe_values.h>
+#include <deal.II/fe/mapping_q1.h>
+#include <deal.II/grid/grid_tools.h>
+#include <deal.II/numerics/data_out.h>
+#include <deal.II/numerics/data_postprocessor.h>
+
+#include <granular_dg/base/errors.h>
+#include <granular_dg/base/simulation.h>
+#include <granular_dg/dg/dg_operator.h>
+#include <granular_dg/dg/time_integrator.h>
+
+#include <algorithm>
+#include <cmath>
+#include <iomanip>
+#include <iostream>
+#include <sstream>
+
+namespace granular_dg
+{
+  namespace internal
+  {
+    /// Derived quantities of the Physics (velocity, stress, ...) as VTU fields.
+    template <int dim, typename Physics>
+    class DerivedFields : public DataPostprocessor<dim>
+    {
+    public:
+      explicit DerivedFields(const Physics &physics)
+        : physics(physics)
+      {}
+
+      void
+      evaluate_vector_field(const DataPostprocessorInputs::Vector<dim> &inputs,
+                            std::vector<Vector<double>> &computed) const override
+      {
+        for (unsigned int q = 0; q < inputs.solution_values.size(); ++q)
+          {
+            Tensor<1, Physics::n_components> U;
+            for (unsigned int c = 0; c < Physics::n_components; ++c)
+              U[c] = inputs.solution_values[q][c];
+            const auto d = physics.derived(U);
+            for (unsigned int i = 0; i < d.size(); ++i)
+              computed[q][i] = d[i];
+          }
+      }
+
+      std::vector<std::string>
+      get_names() const override
+      {
+        return Physics::derived_names();
+      }
+
+      UpdateFlags
+      get_needed_update_flags() const override
+      {
+        return update_values;
+      }
+
+    private:
+      const Physics physics;
+    };
+
+    inline std::string
+    snapshot_name(const std::string &prefix, const unsigned int index,
+                  const std::string &suffix)
+    {
+      return prefix + Utilities::int_to_string(index, 4) + suffix;
+    }
+
+    /// Writes the VTU/PVTU snapshots, the PVD index and (1D) the CSV profiles.
+    template <int dim, typename Physics>
+    class SnapshotWriter
+    {
+    public:
+      SnapshotWriter(const std::string &directory, const Physics &physics,
+                     const unsigned int degree, const unsigned int profile_points,
+                     const bool write_vtu)
+        : directory(directory)
+        , physics(physics)
+        , degree(degree)
+        , profile_points(profile_points > 0 ? profile_points : std::max(2u, degree + 1))
+        , write_vtu(write_vtu)
+      {}
+
+      /// Returns the name of the VTU/PVTU file written (empty if none).
+      std::string
+      write(const DoFHandler<dim> &dof_handler, const Mapping<dim> &mapping,
+            const dg::VectorType &solution, const double time)
+      {
+        const unsigned int index = records.size();
+        solution.update_ghost_values();
+        std::string name;
+        if (write_vtu)
+          name = write_vtu_file(dof_handler, mapping, solution, time, index);
+        if constexpr (dim == 1)
+          write_profile(dof_handler, mapping, solution, time, index);
+        solution.zero_out_ghost_values();
+        if (!name.empty())
+          {
+            records.emplace_back(time, name);
+            if (Utilities::MPI::this_mpi_process(solution.get_mpi_communicator()) == 0)
+              write_pvd(directory + "/solution.pvd", records);
+          }
+        else
+          records.emplace_back(time, "");
+        return name;
+      }
+
+    private:
+      std::string
+      write_vtu_file(const DoFHandler<dim> &dof_handler, const Mapping<dim> &mapping,
+                     const dg::VectorType &solution, const double time,
+                     const unsigned int index)
+      {
+        const MPI_Comm comm = solution.get_mpi_communicator();
+        DataOut<dim>   data_out;
+        DataOutBase::VtkFlags flags(time, index);
+        // deal.II 9.4.1 writes broken high-order cells in 1D: subdivided
+        // linear patches there, Lagrange cells in 2D
+        flags.write_higher_order_cells = (dim > 1);
+        data_out.set_flags(flags);
+        data_out.attach_dof_handler(dof_handler);
+        const DerivedFields<dim, Physics> derived(physics);
+        data_out.add_data_vector(solution, Physics::component_names());
+        data_out.add_data_vector(solution, derived);
+        data_out.build_patches(mapping, std::max(1u, degree));
+
+        const unsigned int n_ranks = Utilities::MPI::n_mpi_processes(comm);
+        const unsigned int rank    = Utilities::MPI::this_mpi_process(comm);
+        if (n_ranks == 1)
+          {
+            const std::string name = snapshot_name("solution-", index, ".vtu");
+            std::ofstream     out(directory + "/" + name);
+            data_out.write_vtu(out);
+            return name;
+          }
+        const std::string base = snapshot_name("solution-", index, "");
+        {
+          std::ofstream out(directory + "/" + base + "." +
+                            Utilities::int_to_string(rank, 4) + ".vtu");
+          data_out.write_vtu(out);
+        }
+        if (rank == 0)
+          {
+            std::vector<std::string> pieces;
+            for (unsigned int r = 0; r < n_ranks; ++r)
+              pieces.push_back(base + "." + Utilities::int_to_string(r, 4) + ".vtu");
+            std::ofstream out(directory + "/" + base + ".pvtu");
+            data_out.write_pvtu_record(out, pieces);
+          }
+        return base + ".pvtu";
+      }
+
+      void
+      write_profile(const DoFHandler<dim> &dof_handler, const Mapping<dim> &mapping,
+                    const dg::VectorType &solution, const double time,
+                    const unsigned int index)
+      {
+        std::vector<Point<dim>> points;
+        for (unsigned int i = 0; i < profile_points; ++i)
+          points.emplace_back(profile_points == 1 ? 0.5 : double(i) / (profile_points - 1));
+        const Quadrature<dim> quadrature(points);
+        FEValues<dim> fe_values(mapping, dof_handler.get_fe(), quadrature,
+                                update_values | update_quadrature_points);
+        std::vector<Vector<double>> values(points.size(),
+                                           Vector<double>(Physics::n_components));
+
+        std::vector<std::string> header{"x"};
+        for (const auto &n : Physics::component_names())
+          header.push_back(n);
+        for (const auto &n : Physics::derived_names())
+          header.push_back(n);
+        CsvWriter csv;
+        csv.open(directory + "/" + snapshot_name("profile-", index, ".csv"),
+                 header, "time = " + format_number(time));
+        for (const auto &cell : dof_handler.active_cell_iterators())
+          {
+            fe_values.reinit(cell);
+            fe_values.get_function_values(solution, values);
+            for (unsigned int q = 0; q < points.size(); ++q)
+              {
+                Tensor<1, Physics::n_components> U;
+                std::vector<double> row{fe_values.quadrature_point(q)[0]};
+                for (unsigned int c = 0; c < Physics::n_components; ++c)
+                  {
+                    U[c] = values[q][c];
+                    row.push_back(U[c]);
+                  }
+                for (const double d : physics.derived(U))
+                  row.push_back(d);
+                csv.row(row);
+              }
+          }
+      }
+
+      const std::string directory;
+      const Physics     physics;
+      const unsigned int degree, profile_points;
+      const bool        write_vtu;
+      std::vector<std::pair<double, std::string>> records;
+    };
+
+    /// The output times of a run: the list, or multiples of the interval,
+    /// always ending with the final time.
+    inline std::vector<double>
+    output_schedule(const CommonParameters &p)
+    {
+      std::vector<double> times;
+      if (!p.output_times.empty())
+        times = p.output_times;
+      else if (p.output_interval > 0)
+        for (unsigned int k = 1; k * p.output_interval < p.final_time * (1 - 1e-12); ++k)
+          times.push_back(k * p.output_interval);
+      times.push_back(p.final_time);
+      std::sort(times.begin(), times.end());
+      times.erase(std::unique(times.begin(), times.end(),
+                              [&](double a, double b) {
+                                return std::abs(a - b) <= 1e-12 * p.final_time;
+                              }),
+                  times.end());
+      return times;
+    }
+
+    /// A violation found in a post-stage check.
+    struct Inadmissible
+    {
+      double                  time;
+      dg::AdmissibilityReport report;
+    };
+  } // namespace internal
+
+  template <int dim, typename Physics>
+  RunResult
+  run_simulation(const SceneData<dim, Physics> &scene,
+                 const CommonParameters        &params,
+                 const unsigned int             degree,
+                 const bool                     write_files,
+                 const double                   dt_factor)
+  {
+    Timer wall_timer;
+    const MPI_Comm comm = MPI_COMM_WORLD;
+    const bool     root = Utilities::MPI::this_mpi_process(comm) == 0;
+
+    const Triangulation<dim> &tria = *scene.triangulation;
+    const FESystem<dim>  fe(FE_DGQLegendre<dim>(degree), Physics::n_components);
+    DoFHandler<dim>      dof_handler(tria);
+    dof_handler.distribute_dofs(fe);
+    const MappingQ1<dim> mapping;
+
+    dg::DGOperator<dim, Physics> op(scene.physics, params.flux, scene.boundary);
+    op.reinit(mapping, dof_handler);
+    dg::ModalLimiter<dim, Physics> limiter(scene.physics, params.limiter, params.tvb_M);
+    limiter.reinit(dof_handler);
+    dg::SSPRK3 integrator;
+
+    dg::VectorType solution, last_good;
+    op.initialize_vector(solution);
+    op.initialize_vector(last_good);
+    scene.initial->set_time(0.);
+    op.project(*scene.initial, solution);
+    limiter.apply(solution);
+
+    RunResult result;
+    result.n_dofs  = dof_handler.n_dofs();
+    result.n_cells = tria.n_global_active_cells();
+    result.h_min   = GridTools::minimal_cell_diameter(tria);
+
+    TimerOutput timer(comm, std::cout, TimerOutput::never, TimerOutput::wall_times);
+
+    const auto output_times = internal::output_schedule(params);
+    internal::SnapshotWriter<dim, Physics> snapshots(
+      params.directory, scene.physics, degree, params.profile_points, params.write_vtu);
+
+    const auto names = Physics::component_names();
+    CsvWriter  timeseries;
+    if (write_files && root)
+      {
+        std::vector<std::string> header{"time", "step", "dt"};
+        for (const auto &n : names)
+          header.push_back("integral_" + n);
+        header.push_back("energy");
+        header.push_back("troubled_cells");
+        if (scene.exact)
+          header.push_back("l2_error");
+        timeseries.open(params.directory + "/timeseries.csv", header);
+      }
+
+    double        t = 0., dt = 0.;
+    unsigned long step = 0;
+    unsigned int  troubled = 0;
+    auto energy = [&](const Tensor<1, Physics::n_components> &U) {
+      return scene.physics.energy(U);
+    };
+    auto l2_error = [&](const dg::VectorType &u) {
+      scene.exact->set_time(t);
+      double sum = 0;
+      result.errors.clear();
+      for (const auto &e : op.errors(u, *scene.exact))
+        {
+          result.errors.push_back(e);
+          sum += e[1] * e[1];
+        }
+      return std::sqrt(sum);
+    };
+    auto record = [&]() {
+      TimerOutput::Scope scope(timer, "output");
+      if (!write_files)
+        return;
+      snapshots.write(dof_handler, mapping, solution, t);
+      std::vector<double> row{t, double(step), dt};
+      for (const double s : op.integrals(solution))
+        row.push_back(s);
+      row.push_back(op.integrate(solution, energy));
+      row.push_back(Utilities::MPI::sum(troubled, comm));
+      if (scene.exact)
+        row.push_back(l2_error(solution));
+      if (root)
+        timeseries.row(row);
+    };
+
+    auto post_stage = [&](dg::VectorType &u, const double stage_time, double) {
+      troubled = limiter.apply(u);
+      const auto report = op.check_admissibility(u);
+      if (!report.ok)
+        throw internal::Inadmissible{stage_time, report};
+    };
+
+    if (write_files && root)
+      std::cout << "  " << result.n_cells << " cells, " << result.n_dofs
+                << " DoFs, degree " << degree << ", " << Physics::name
+                << "; output to " << params.directory << "/ (solution.pvd"
+                << (dim == 1 ? ", profile-NNNN.csv" : "")
+                << ", timeseries.csv, summary.json)" << std::endl;
+
+    record();
+    Progress progress(0., params.final_time, write_files ? params.progress_interval : 0.);
+    double   loop_time = 0;
+    unsigned int next_output = 0;
+    try
+      {
+        while (next_output < output_times.size())
+          {
+            const double speed = op.max_speed_over_h(solution);
+            dt = dt_factor * params.cfl / speed;
+            if (!(std::isfinite(dt) && dt > 0))
+              throw RunError("time step is " + format_number(dt) + " at t = " +
+                             format_number(t) + " (max wave speed/h = " +
+                             format_number(speed) + ")");
+            bool lands = false;
+            if (t + dt >= output_times[next_output] * (1 - 1e-14))
+              {
+                dt    = output_times[next_output] - t;
+                lands = true;
+              }
+            last_good = solution;
+            {
+              TimerOutput::Scope scope(timer, "time stepping");
+              Timer              step_timer;
+              integrator.step(op, solution, t, dt, post_stage);
+              loop_time += step_timer.wall_time();
+            }
+            t = lands ? output_times[next_output] : t + dt;
+            ++step;
+            if (lands)
+              {
+                record();
+                ++next_output;
+              }
+            progress.update(step, t, dt);
+          }
+      }
+    catch (const internal::Inadmissible &failure)
+      {
+        std::ostringstream msg;
+        msg << "inadmissible state at t = " << format_number(failure.time)
+            << " (step " << step + 1 << "), x = (";
+        for (int d = 0; d < dim; ++d)
+          msg << (d ? ", " : "") << format_number(failure.report.position[d]);
+        msg << "), state (";
+        for (unsigned int c = 0; c < failure.report.state.size(); ++c)
+          msg << (c ? ", " : "") << names[c] << " = "
+              << format_number(failure.report.state[c]);
+        msg << "): " << failure.report.reason;
+        result.status = "failed: " + msg.str();
+        if (write_files)
+          {
+            solution = last_good;
+            const std::string file = snapshots.write(dof_handler, mapping, solution, t);
+            msg << "; last good state (t = " << format_number(t) << ") written to "
+                << params.directory << "/" << (file.empty() ? "profile" : file);
+          }
+        result.n_steps     = step;
+        result.final_time  = t;
+        result.wall_time_s = wall_timer.wall_time();
+        if (write_files)
+          write_summary(params.directory, scene.scene, dim, degree, result);
+        throw RunError(msg.str());
+      }
+    catch (const RunError &e)
+      {
+        result.status     = std::string("failed: ") + e.what();
+        result.n_steps    = step;
+        result.final_time = t;
+        if (write_files)
+          {
+            solution = last_good;
+            snapshots.write(dof_handler, mapping, solution, t);
+            write_summary(params.directory, scene.scene, dim, degree, result);
+          }
+        throw;
+      }
+
+    result.n_steps     = step;
+    result.final_time  = t;
+    result.time_loop_s = loop_time;
+    result.dof_updates_per_s =
+      loop_time > 0 ? double(result.n_dofs) * dg::SSPRK3::n_stages * step / loop_time : 0;
+    if (scene.exact)
+      result.l2_error = l2_error(solution);
+    const auto integrals = op.integrals(solution);
+    for (unsigned int c = 0; c < names.size(); ++c)
+      result.diagnostics.add("integral_" + names[c], integrals[c]);
+    result.diagnostics.add("energy", op.integrate(solution, energy));
+    result.wall_time_s = wall_timer.wall_time();
+
+    if (write_files)
+      {
+        write_summary(params.directory, scene.scene, dim, degree, result);
+        if (root)
+          {
+            std::cout << "  completed " << step << " steps to t = " << format_number(t)
+                      << " in " << format_duration(result.wall_time_s) << " ("
+                      << format_number(result.dof_updates_per_s / 1e6)
+                      << " MDoF-stage updates/s in the time loop)" << std::endl;
+            timer.print_wall_time_statistics(comm);
+          }
+      }
+    return result;
+  }
+
+  template <int dim, typename Physics>
+  void
+  run_convergence_study(
+    const std::function<SceneData<dim, Physics>(unsigned int)> &make_scene,
+    const CommonParameters                                     &params)
+  {
+    const bool root = Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) == 0;
+    CsvWriter  table, rates;
+    if (root)
+      {
+        table.open(params.directory + "/convergence.csv",
+                   {"degree", "cells", "dofs", "h", "l2_error", "eoc", "time_steps",
+                    "wall_time_s"});
+        rates.open(params.directory + "/convergence-rates.csv",
+                   {"degree", "eoc_finest"},
+                   "L2 error rate of the two finest meshes");
+        std::cout << "  degree    cells       dofs       L2 error     EOC   steps" << std::endl;
+      }
+    JsonObject errors;
+    for (const unsigned int p : params.convergence_degrees)
+      {
+        double       e_prev = -1, h_prev = -1, eoc = NAN;
+        const double exponent = std::max(1., (p + 1.) / 3.) - 1.;
+        const double h0       = 1. / params.convergence_cells.front();
+        std::vector<double> errs;
+        for (const unsigned int cells : params.convergence_cells)
+          {
+            const auto   scene  = make_scene(cells);
+            AssertThrow(scene.exact, ExcMessage("no exact solution"));
+            const double factor = std::pow((1. / cells) / h0, exponent);
+            const auto   r      = run_simulation(scene, params, p, false, factor);
+            eoc = e_prev > 0 ? std::log(e_prev / r.l2_error) / std::log(h_prev / r.h_min) : NAN;
+            if (root)
+              {
+                table.row({double(p), double(cells), double(r.n_dofs), r.h_min,
+                           r.l2_error, eoc, double(r.n_steps), r.wall_time_s});
+                std::cout << std::setw(8) << p << std::setw(9) << cells << std::setw(11)
+                          << r.n_dofs << std::setw(15) << std::scientific
+                          << std::setprecision(4) << r.l2_error << std::defaultfloat
+                          << std::setw(8) << std::fixed << std::setprecision(2) << eoc
+                          << std::defaultfloat << std::setw(8) << r.n_steps << std::endl;
+              }
+            e_prev = r.l2_error;
+            h_prev = r.h_min;
+            errs.push_back(r.l2_error);
+          }
+        if (root)
+          rates.row({double(p), eoc});
+        errors.add("degree_" + std::to_string(p) + "_l2_errors", errs);
+      }
+    if (root)
+      {
+        JsonObject summary;
+        summary.add("scene", make_scene(params.convergence_cells.front()).scene);
+        summary.add("mode", "convergence study");
+        summary.add("dim", static_cast<long long>(dim));
+        summary.add("status", "completed");
+        summary.add("cells", std::vector<double>(params.convergence_cells.begin(),
+                                                 params.convergence_cells.end()));
+        summary.add_object("errors", errors);
+        summary.write(params.directory + "/summary.json");
+      }
+  }
+} // namespace granular_dg

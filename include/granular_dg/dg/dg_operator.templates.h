@@ -1,0 +1,436 @@
+#pragma once
+
+#include <deal.II/base/mpi.h>
+#include <deal.II/base/quadrature_lib.h>
+#include <deal.II/matrix_free/fe_evaluation.h>
+
+#include <granular_dg/dg/dg_operator.h>
+
+#include <limits>
+
+namespace granular_dg::dg
+{
+  namespace internal
+  {
+    template <int dim, typename Number>
+    Point<dim>
+    lane_point(const Point<dim, VectorizedArray<Number>> &p, const unsigned int v)
+    {
+      Point<dim> x;
+      for (int d = 0; d < dim; ++d)
+        x[d] = p[d][v];
+      return x;
+    }
+
+    /// FEEvaluation returns a scalar (not a Tensor) for one component;
+    /// these adapters let the kernels treat every system as a Tensor.
+    template <int n, typename T, typename Eval>
+    Tensor<1, n, T>
+    get_state(const Eval &phi, const unsigned int q)
+    {
+      if constexpr (n == 1)
+        {
+          Tensor<1, 1, T> U;
+          U[0] = phi.get_value(q);
+          return U;
+        }
+      else
+        return phi.get_value(q);
+    }
+
+    template <int n, int dim, typename T, typename Eval>
+    void
+    submit_flux(Eval &phi, const Tensor<1, n, Tensor<1, dim, T>> &F, const unsigned int q)
+    {
+      if constexpr (n == 1)
+        phi.submit_gradient(F[0], q);
+      else
+        phi.submit_gradient(F, q);
+    }
+
+    template <int n, typename T, typename Eval>
+    void
+    submit_state(Eval &phi, const Tensor<1, n, T> &U, const unsigned int q)
+    {
+      if constexpr (n == 1)
+        phi.submit_value(U[0], q);
+      else
+        phi.submit_value(U, q);
+    }
+  } // namespace internal
+
+  template <int dim, typename Physics>
+  DGOperator<dim, Physics>::DGOperator(const Physics   &physics,
+                                       NumericalFlux    flux,
+                                       BoundaryMap<dim> bc)
+    : phys(physics)
+    , flux_type(flux)
+    , boundary(std::move(bc))
+  {}
+
+  template <int dim, typename Physics>
+  void
+  DGOperator<dim, Physics>::reinit(const Mapping<dim>    &mapping,
+                                   const DoFHandler<dim> &dof_handler)
+  {
+    const unsigned int degree = dof_handler.get_fe().degree;
+    const std::vector<Quadrature<1>> quadratures = {QGauss<1>(degree + 2)};
+    const AffineConstraints<double> constraints;
+
+    typename MatrixFree<dim, Number>::AdditionalData additional_data;
+    additional_data.mapping_update_flags =
+      (update_gradients | update_JxW_values | update_quadrature_points |
+       update_values);
+    additional_data.mapping_update_flags_inner_faces =
+      (update_JxW_values | update_quadrature_points | update_normal_vectors |
+       update_values);
+    additional_data.mapping_update_flags_boundary_faces =
+      (update_JxW_values | update_quadrature_points | update_normal_vectors |
+       update_values);
+    additional_data.tasks_parallel_scheme =
+      MatrixFree<dim, Number>::AdditionalData::none;
+
+    const std::vector<const DoFHandler<dim> *>          dof_handlers = {&dof_handler};
+    const std::vector<const AffineConstraints<double> *> constraint_list = {&constraints};
+    data.reinit(mapping, dof_handlers, constraint_list, quadratures, additional_data);
+
+    // FE_DGQLegendre is orthonormal on the unit cell, so on affine cells the
+    // mass matrix is |K| times the identity: its inverse is a diagonal vector
+    data.initialize_dof_vector(inverse_mass_diagonal);
+    FEEvaluation<dim, -1, 0, n_components, Number> phi(data);
+    for (unsigned int cell = 0; cell < data.n_cell_batches(); ++cell)
+      {
+        AssertThrow(data.get_mapping_info().get_cell_type(cell) <=
+                      dealii::internal::MatrixFreeFunctions::affine,
+                    ExcMessage("the DG engine assumes affine cells"));
+        phi.reinit(cell);
+        VA volume = 0.;
+        for (unsigned int q = 0; q < phi.n_q_points; ++q)
+          volume += phi.JxW(q);
+        for (unsigned int i = 0; i < phi.dofs_per_cell; ++i)
+          phi.begin_dof_values()[i] = VA(1.) / volume;
+        phi.set_dof_values(inverse_mass_diagonal);
+      }
+  }
+
+  template <int dim, typename Physics>
+  void
+  DGOperator<dim, Physics>::initialize_vector(VectorType &vector) const
+  {
+    data.initialize_dof_vector(vector);
+  }
+
+  template <int dim, typename Physics>
+  void
+  DGOperator<dim, Physics>::local_apply_cell(
+    const MatrixFree<dim, Number> &,
+    VectorType                                  &dst,
+    const VectorType                            &src,
+    const std::pair<unsigned int, unsigned int> &cell_range) const
+  {
+    FEEvaluation<dim, -1, 0, n_components, Number> phi(data);
+    for (unsigned int cell = cell_range.first; cell < cell_range.second; ++cell)
+      {
+        phi.reinit(cell);
+        phi.gather_evaluate(src, EvaluationFlags::values);
+        for (unsigned int q = 0; q < phi.n_q_points; ++q)
+          {
+            const auto U = internal::get_state<n_components, VA>(phi, q);
+            internal::submit_flux<n_components, dim, VA>(phi, phys.flux(U), q);
+            if constexpr (Physics::has_source_term)
+              internal::submit_state<n_components, VA>(
+                phi, phys.source(U, phi.quadrature_point(q), time), q);
+          }
+        if constexpr (Physics::has_source_term)
+          phi.integrate_scatter(EvaluationFlags::values |
+                                  EvaluationFlags::gradients,
+                                dst);
+        else
+          phi.integrate_scatter(EvaluationFlags::gradients, dst);
+      }
+  }
+
+  template <int dim, typename Physics>
+  void
+  DGOperator<dim, Physics>::local_apply_face(
+    const MatrixFree<dim, Number> &,
+    VectorType                                  &dst,
+    const VectorType                            &src,
+    const std::pair<unsigned int, unsigned int> &face_range) const
+  {
+    FEFaceEvaluation<dim, -1, 0, n_components, Number> phi_m(data, true);
+    FEFaceEvaluation<dim, -1, 0, n_components, Number> phi_p(data, false);
+    for (unsigned int face = face_range.first; face < face_range.second; ++face)
+      {
+        phi_m.reinit(face);
+        phi_m.gather_evaluate(src, EvaluationFlags::values);
+        phi_p.reinit(face);
+        phi_p.gather_evaluate(src, EvaluationFlags::values);
+        for (unsigned int q = 0; q < phi_m.n_q_points; ++q)
+          {
+            const auto F = phys.numerical_flux(
+              flux_type,
+              internal::get_state<n_components, VA>(phi_m, q),
+              internal::get_state<n_components, VA>(phi_p, q),
+              phi_m.get_normal_vector(q));
+            internal::submit_state<n_components, VA>(phi_m, -F, q);
+            internal::submit_state<n_components, VA>(phi_p, F, q);
+          }
+        phi_m.integrate_scatter(EvaluationFlags::values, dst);
+        phi_p.integrate_scatter(EvaluationFlags::values, dst);
+      }
+  }
+
+  template <int dim, typename Physics>
+  void
+  DGOperator<dim, Physics>::local_apply_boundary_face(
+    const MatrixFree<dim, Number> &,
+    VectorType                                  &dst,
+    const VectorType                            &src,
+    const std::pair<unsigned int, unsigned int> &face_range) const
+  {
+    FEFaceEvaluation<dim, -1, 0, n_components, Number> phi(data, true);
+    for (unsigned int face = face_range.first; face < face_range.second; ++face)
+      {
+        phi.reinit(face);
+        phi.gather_evaluate(src, EvaluationFlags::values);
+        const auto bc_it = boundary.find(data.get_boundary_id(face));
+        AssertThrow(bc_it != boundary.end(),
+                    ExcMessage("no boundary condition for boundary id " +
+                               std::to_string(data.get_boundary_id(face))));
+        const BoundaryCondition<dim> &bc = bc_it->second;
+        if (bc.data)
+          bc.data->set_time(time);
+
+        for (unsigned int q = 0; q < phi.n_q_points; ++q)
+          {
+            const auto U_m = internal::get_state<n_components, VA>(phi, q);
+            const auto n   = phi.get_normal_vector(q);
+            State<VA>  g;
+            if (bc.data)
+              {
+                const auto x = phi.quadrature_point(q);
+                for (unsigned int v = 0; v < VA::size(); ++v)
+                  {
+                    const Point<dim> p = internal::lane_point<dim>(x, v);
+                    for (unsigned int c = 0; c < n_components; ++c)
+                      g[c][v] = bc.data->value(p, c);
+                  }
+              }
+            const auto U_p = phys.boundary_state(bc.kind, U_m, n, g);
+            const auto F   = phys.numerical_flux(flux_type, U_m, U_p, n);
+            internal::submit_state<n_components, VA>(phi, -F, q);
+          }
+        phi.integrate_scatter(EvaluationFlags::values, dst);
+      }
+  }
+
+  template <int dim, typename Physics>
+  void
+  DGOperator<dim, Physics>::apply(const double      t,
+                                  const VectorType &src,
+                                  VectorType       &dst) const
+  {
+    time = t;
+    data.loop(&DGOperator::local_apply_cell,
+              &DGOperator::local_apply_face,
+              &DGOperator::local_apply_boundary_face,
+              this,
+              dst,
+              src,
+              true,
+              MatrixFree<dim, Number>::DataAccessOnFaces::values,
+              MatrixFree<dim, Number>::DataAccessOnFaces::values);
+    dst.scale(inverse_mass_diagonal);
+  }
+
+  template <int dim, typename Physics>
+  void
+  DGOperator<dim, Physics>::project(const Function<dim> &function,
+                                    VectorType          &dst) const
+  {
+    AssertDimension(function.n_components, n_components);
+    FEEvaluation<dim, -1, 0, n_components, Number> phi(data);
+    for (unsigned int cell = 0; cell < data.n_cell_batches(); ++cell)
+      {
+        phi.reinit(cell);
+        for (unsigned int q = 0; q < phi.n_q_points; ++q)
+          {
+            const auto x = phi.quadrature_point(q);
+            State<VA>  U;
+            for (unsigned int v = 0; v < VA::size(); ++v)
+              for (unsigned int c = 0; c < n_components; ++c)
+                U[c][v] = function.value(internal::lane_point<dim>(x, v), c);
+            internal::submit_state<n_components, VA>(phi, U, q);
+          }
+        phi.integrate(EvaluationFlags::values);
+        phi.set_dof_values(dst);
+      }
+    dst.scale(inverse_mass_diagonal);
+  }
+
+  template <int dim, typename Physics>
+  double
+  DGOperator<dim, Physics>::max_speed_over_h(const VectorType &solution) const
+  {
+    double                                         result = 0;
+    FEEvaluation<dim, -1, 0, n_components, Number> phi(data);
+    for (unsigned int cell = 0; cell < data.n_cell_batches(); ++cell)
+      {
+        phi.reinit(cell);
+        phi.gather_evaluate(solution, EvaluationFlags::values);
+        VA local = 0.;
+        for (unsigned int q = 0; q < phi.n_q_points; ++q)
+          {
+            const auto U         = internal::get_state<n_components, VA>(phi, q);
+            const auto inv_jac   = phi.inverse_jacobian(q);
+            VA         sum_inv_h = 0.;
+            for (int d = 0; d < dim; ++d)
+              {
+                VA row = 0.;
+                for (int e = 0; e < dim; ++e)
+                  row += inv_jac[d][e] * inv_jac[d][e];
+                sum_inv_h += std::sqrt(row);
+              }
+            local = std::max(local, phys.max_wave_speed(U) * sum_inv_h);
+          }
+        for (unsigned int v = 0; v < data.n_active_entries_per_cell_batch(cell); ++v)
+          result = std::max(result, local[v]);
+      }
+    return Utilities::MPI::max(result, solution.get_mpi_communicator());
+  }
+
+  template <int dim, typename Physics>
+  std::array<double, DGOperator<dim, Physics>::n_components>
+  DGOperator<dim, Physics>::integrals(const VectorType &solution) const
+  {
+    std::array<double, n_components>               sums{};
+    FEEvaluation<dim, -1, 0, n_components, Number> phi(data);
+    for (unsigned int cell = 0; cell < data.n_cell_batches(); ++cell)
+      {
+        phi.reinit(cell);
+        phi.gather_evaluate(solution, EvaluationFlags::values);
+        for (unsigned int q = 0; q < phi.n_q_points; ++q)
+          {
+            const auto U   = internal::get_state<n_components, VA>(phi, q);
+            const VA   JxW = phi.JxW(q);
+            for (unsigned int v = 0; v < data.n_active_entries_per_cell_batch(cell); ++v)
+              for (unsigned int c = 0; c < n_components; ++c)
+                sums[c] += U[c][v] * JxW[v];
+          }
+      }
+    for (auto &s : sums)
+      s = Utilities::MPI::sum(s, solution.get_mpi_communicator());
+    return sums;
+  }
+
+  template <int dim, typename Physics>
+  double
+  DGOperator<dim, Physics>::integrate(
+    const VectorType                                     &solution,
+    const std::function<double(const State<double> &)> &density) const
+  {
+    double                                         sum = 0;
+    FEEvaluation<dim, -1, 0, n_components, Number> phi(data);
+    for (unsigned int cell = 0; cell < data.n_cell_batches(); ++cell)
+      {
+        phi.reinit(cell);
+        phi.gather_evaluate(solution, EvaluationFlags::values);
+        for (unsigned int q = 0; q < phi.n_q_points; ++q)
+          {
+            const auto U   = internal::get_state<n_components, VA>(phi, q);
+            const VA   JxW = phi.JxW(q);
+            for (unsigned int v = 0; v < data.n_active_entries_per_cell_batch(cell); ++v)
+              {
+                State<double> u;
+                for (unsigned int c = 0; c < n_components; ++c)
+                  u[c] = U[c][v];
+                sum += density(u) * JxW[v];
+              }
+          }
+      }
+    return Utilities::MPI::sum(sum, solution.get_mpi_communicator());
+  }
+
+  template <int dim, typename Physics>
+  std::array<std::array<double, 3>, DGOperator<dim, Physics>::n_components>
+  DGOperator<dim, Physics>::errors(const VectorType    &solution,
+                                   const Function<dim> &exact) const
+  {
+    std::array<std::array<double, 3>, n_components> e{};
+    // a richer quadrature than the operator's so the error is not aliased
+    FEEvaluation<dim, -1, 0, n_components, Number> phi(data);
+    for (unsigned int cell = 0; cell < data.n_cell_batches(); ++cell)
+      {
+        phi.reinit(cell);
+        phi.gather_evaluate(solution, EvaluationFlags::values);
+        for (unsigned int q = 0; q < phi.n_q_points; ++q)
+          {
+            const auto U   = internal::get_state<n_components, VA>(phi, q);
+            const auto x   = phi.quadrature_point(q);
+            const VA   JxW = phi.JxW(q);
+            for (unsigned int v = 0; v < data.n_active_entries_per_cell_batch(cell); ++v)
+              for (unsigned int c = 0; c < n_components; ++c)
+                {
+                  const double diff = std::abs(
+                    U[c][v] - exact.value(internal::lane_point<dim>(x, v), c));
+                  e[c][0] += diff * JxW[v];
+                  e[c][1] += diff * diff * JxW[v];
+                  e[c][2] = std::max(e[c][2], diff);
+                }
+          }
+      }
+    const MPI_Comm comm = solution.get_mpi_communicator();
+    for (auto &ec : e)
+      {
+        ec[0] = Utilities::MPI::sum(ec[0], comm);
+        ec[1] = std::sqrt(Utilities::MPI::sum(ec[1], comm));
+        ec[2] = Utilities::MPI::max(ec[2], comm);
+      }
+    return e;
+  }
+
+  template <int dim, typename Physics>
+  AdmissibilityReport
+  DGOperator<dim, Physics>::check_admissibility(const VectorType &solution) const
+  {
+    AdmissibilityReport                            report;
+    FEEvaluation<dim, -1, 0, n_components, Number> phi(data);
+    for (unsigned int cell = 0; cell < data.n_cell_batches() && report.ok; ++cell)
+      {
+        phi.reinit(cell);
+        phi.gather_evaluate(solution, EvaluationFlags::values);
+        for (unsigned int q = 0; q < phi.n_q_points && report.ok; ++q)
+          {
+            const auto U = internal::get_state<n_components, VA>(phi, q);
+            for (unsigned int v = 0; v < data.n_active_entries_per_cell_batch(cell); ++v)
+              {
+                State<double> u;
+                for (unsigned int c = 0; c < n_components; ++c)
+                  u[c] = U[c][v];
+                std::string why = phys.admissibility_violation(u);
+                if (!why.empty())
+                  {
+                    report.ok = false;
+                    report.reason = why;
+                    const Point<dim> p =
+                      internal::lane_point<dim>(phi.quadrature_point(q), v);
+                    for (int d = 0; d < dim; ++d)
+                      report.position[d] = p[d];
+                    report.state.assign(u.begin_raw(), u.end_raw());
+                    break;
+                  }
+              }
+          }
+      }
+    // every rank learns whether someone failed; the failing rank reports
+    const bool all_ok =
+      Utilities::MPI::min(report.ok ? 1 : 0, solution.get_mpi_communicator()) == 1;
+    if (!all_ok && report.ok)
+      {
+        report.ok     = false;
+        report.reason = "inadmissible state on another MPI rank";
+      }
+    return report;
+  }
+} // namespace granular_dg::dg

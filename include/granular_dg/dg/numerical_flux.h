@@ -1,0 +1,39 @@
+#pragma once
+
+#include <deal.II/base/tensor.h>
+#include <deal.II/base/vectorization.h>
+
+namespace granular_dg::dg
+{
+  using namespace dealii;
+
+  /// Numerical fluxes selectable in the prm. Every physics provides local
+  /// Lax-Friedrichs; `impedance` is the physics-specific slot (for
+  /// elasticity the linearised Godunov flux that keeps u.n and sigma
+  /// continuous).
+  enum class NumericalFlux
+  {
+    local_lax_friedrichs,
+    impedance
+  };
+
+  /// Local Lax-Friedrichs (Rusanov): {F}.n + lambda/2 (U_m - U_p),
+  /// lambda = max(|lambda(U_m)|, |lambda(U_p)|).
+  template <typename Physics, int dim, int n_components, typename Number>
+  Tensor<1, n_components, Number>
+  local_lax_friedrichs(const Physics                         &physics,
+                       const Tensor<1, n_components, Number> &U_m,
+                       const Tensor<1, n_components, Number> &U_p,
+                       const Tensor<1, dim, Number>          &normal)
+  {
+    const auto   F_m    = physics.flux(U_m);
+    const auto   F_p    = physics.flux(U_p);
+    const Number lambda = std::max(physics.max_wave_speed(U_m),
+                                   physics.max_wave_speed(U_p));
+    Tensor<1, n_components, Number> F;
+    for (int c = 0; c < n_components; ++c)
+      F[c] = 0.5 * ((F_m[c] + F_p[c]) * normal) +
+             (0.5 * lambda) * (U_m[c] - U_p[c]);
+    return F;
+  }
+} // namespace granular_dg::dg

@@ -1,0 +1,319 @@
+#pragma once
+
+/**
+ * @file
+ * Nonlinear elasticity in (possibly layered) media, after LeVeque & Yong (2003)
+ * and Kurganov & Pollack (seed 001):
+ * \f[
+ *   \varepsilon_t - \nabla\cdot\mathbf u = 0, \qquad
+ *   (\rho\mathbf u)_t - \nabla\sigma(\varepsilon) = 0,
+ * \f]
+ * with strain \f$\varepsilon\f$, velocity \f$\mathbf u\f$ (dim components),
+ * density \f$\rho\f$ and modulus \f$K\f$, and one of the stress-strain laws
+ *   - (1.4) quadratic: \f$\sigma = K\varepsilon + \beta K^2\varepsilon^2\f$
+ *           (linear for \f$\beta = 0\f$),
+ *   - (1.5) exponential: \f$\sigma = e^{K\varepsilon} - 1\f$.
+ *
+ * Conserved variables U = (eps, m_1..m_dim), m = rho u. The flux in direction
+ * n is F(U) n = (-u.n, -sigma n). Its eigenvalues are -c, 0 (dim-1 times),
+ * +c with the sound speed c = sqrt(sigma'(eps)/rho); right eigenvectors
+ * r_(+-) = (1, -+Z n), r_0 = (0, t) with the impedance Z = rho c.
+ *
+ * Admissible set: finite states with sigma'(eps) > 0 (the system is
+ * hyperbolic); for law (1.4) with beta > 0 that is eps > -1/(2 beta K).
+ */
+
+#include <deal.II/base/tensor.h>
+#include <deal.II/base/vectorization.h>
+
+#include <granular_dg/dg/boundary.h>
+#include <granular_dg/dg/numerical_flux.h>
+
+#include <array>
+#include <cmath>
+#include <string>
+#include <vector>
+
+namespace granular_dg::elasticity
+{
+  using namespace dealii;
+
+  /// The stress-strain laws of seed 001.
+  enum class StressLaw
+  {
+    quadratic,  ///< (1.4) sigma = K eps + beta K^2 eps^2
+    exponential ///< (1.5) sigma = exp(K eps) - 1
+  };
+
+  /// Material data of one layer.
+  struct Material
+  {
+    double rho  = 1.;
+    double K    = 1.;
+    double beta = 0.;
+  };
+
+  template <int dim>
+  class System
+  {
+  public:
+    static constexpr unsigned int n_components = dim + 1;
+    static constexpr const char  *name         = "nonlinear elasticity";
+    static constexpr bool         has_source_term = false;
+
+    template <typename Number>
+    using State = Tensor<1, n_components, Number>;
+    template <typename Number>
+    using Flux = Tensor<1, n_components, Tensor<1, dim, Number>>;
+
+    System(const StressLaw law, const Material &material)
+      : law(law)
+      , mat(material)
+    {}
+
+    static std::vector<std::string>
+    component_names()
+    {
+      std::vector<std::string> names{"strain"};
+      const char *m[] = {"momentum_x", "momentum_y", "momentum_z"};
+      for (int d = 0; d < dim; ++d)
+        names.emplace_back(m[d]);
+      return names;
+    }
+
+    /// Quantities written next to the conserved ones: velocity and stress.
+    static std::vector<std::string>
+    derived_names()
+    {
+      std::vector<std::string> names;
+      const char *v[] = {"velocity_x", "velocity_y", "velocity_z"};
+      for (int d = 0; d < dim; ++d)
+        names.emplace_back(v[d]);
+      names.emplace_back("stress");
+      return names;
+    }
+
+    std::vector<double>
+    derived(const State<double> &U) const
+    {
+      std::vector<double> out;
+      for (int d = 0; d < dim; ++d)
+        out.push_back(U[1 + d] / mat.rho);
+      out.push_back(stress(U[0]));
+      return out;
+    }
+
+    template <typename Number>
+    Number
+    stress(const Number &eps) const
+    {
+      if (law == StressLaw::quadratic)
+        return mat.K * eps + (mat.beta * mat.K * mat.K) * eps * eps;
+      else
+        return std::exp(mat.K * eps) - Number(1.);
+    }
+
+    /// sigma'(eps)
+    template <typename Number>
+    Number
+    stress_derivative(const Number &eps) const
+    {
+      if (law == StressLaw::quadratic)
+        return mat.K + (2. * mat.beta * mat.K * mat.K) * eps;
+      else
+        return mat.K * std::exp(mat.K * eps);
+    }
+
+    /// Sigma(eps) = int_0^eps sigma: the stored energy density.
+    double
+    stored_energy(const double eps) const
+    {
+      if (law == StressLaw::quadratic)
+        return 0.5 * mat.K * eps * eps +
+               mat.beta * mat.K * mat.K * eps * eps * eps / 3.;
+      else
+        return (std::exp(mat.K * eps) - 1.) / mat.K - eps;
+    }
+
+    /// Total energy density |m|^2/(2 rho) + Sigma(eps).
+    double
+    energy(const State<double> &U) const
+    {
+      double m2 = 0;
+      for (int d = 0; d < dim; ++d)
+        m2 += U[1 + d] * U[1 + d];
+      return 0.5 * m2 / mat.rho + stored_energy(U[0]);
+    }
+
+    template <typename Number>
+    Flux<Number>
+    flux(const State<Number> &U) const
+    {
+      Flux<Number>  F;
+      const Number  sigma   = stress(U[0]);
+      const double  inv_rho = 1. / mat.rho;
+      for (int d = 0; d < dim; ++d)
+        {
+          F[0][d]     = -U[1 + d] * inv_rho;
+          F[1 + d][d] = -sigma;
+        }
+      return F;
+    }
+
+    /// Sound speed c = sqrt(sigma'/rho); the largest |eigenvalue| in any
+    /// direction. Clamped at 0 for non-hyperbolic states (caught by the
+    /// admissibility check, never a NaN here).
+    template <typename Number>
+    Number
+    max_wave_speed(const State<Number> &U) const
+    {
+      Number s = stress_derivative(U[0]) * (1. / mat.rho);
+      return std::sqrt(std::max(s, Number(0.)));
+    }
+
+    /// Exterior state of a boundary face from the kind and its data g
+    /// (dim values of the Function at the point: wall velocity for a wall,
+    /// prescribed traction sigma for a traction boundary (first value),
+    /// the full exterior state for Dirichlet).
+    template <typename Number>
+    State<Number>
+    boundary_state(const dg::BoundaryKind         kind,
+                   const State<Number>           &U_m,
+                   const Tensor<1, dim, Number>  &normal,
+                   const State<Number>           &g) const
+    {
+      State<Number> U_p = U_m;
+      switch (kind)
+        {
+          case dg::BoundaryKind::outflow:
+            break;
+          case dg::BoundaryKind::dirichlet:
+            U_p = g;
+            break;
+          case dg::BoundaryKind::wall:
+            {
+              // mirror state: the Riemann problem with the interior state
+              // has u.n = u_wall.n at the wall; g[1..dim] is the wall velocity
+              Number un_m = 0, un_w = 0;
+              for (int d = 0; d < dim; ++d)
+                {
+                  un_m += U_m[1 + d] * normal[d];
+                  un_w += g[1 + d] * normal[d];
+                }
+              const Number dm = (2. * mat.rho) * (un_w - un_m / mat.rho);
+              for (int d = 0; d < dim; ++d)
+                U_p[1 + d] += dm * normal[d];
+              break;
+            }
+          case dg::BoundaryKind::traction:
+            {
+              // sigma(eps_p) = 2 g - sigma(eps_m) so that the average is g;
+              // solved with the linearisation at eps_m
+              const Number s_m = stress(U_m[0]);
+              U_p[0] += 2. * (g[0] - s_m) / stress_derivative(U_m[0]);
+              break;
+            }
+        }
+      return U_p;
+    }
+
+    /// Interface-aware flux: the linearised Godunov (acoustic) state with
+    /// impedances Z_m, Z_p that makes u.n and sigma continuous; the flux is
+    /// evaluated from (u*, sigma*). Returns F* . n.
+    template <typename Number>
+    State<Number>
+    impedance_flux(const State<Number>          &U_m,
+                   const State<Number>          &U_p,
+                   const Tensor<1, dim, Number> &n) const
+    {
+      const Number Z_m = mat.rho * max_wave_speed(U_m);
+      const Number Z_p = mat.rho * max_wave_speed(U_p);
+      Number       un_m = 0, un_p = 0;
+      for (int d = 0; d < dim; ++d)
+        {
+          un_m += U_m[1 + d] * n[d];
+          un_p += U_p[1 + d] * n[d];
+        }
+      un_m *= 1. / mat.rho;
+      un_p *= 1. / mat.rho;
+      const Number s_m = stress(U_m[0]), s_p = stress(U_p[0]);
+      const Number inv = Number(1.) / (Z_m + Z_p);
+      const Number u_star = (Z_m * un_m + Z_p * un_p + s_p - s_m) * inv;
+      const Number s_star = (Z_p * s_m + Z_m * s_p + Z_m * Z_p * (un_p - un_m)) * inv;
+      State<Number> F;
+      F[0] = -u_star;
+      for (int d = 0; d < dim; ++d)
+        F[1 + d] = -s_star * n[d];
+      return F;
+    }
+
+    template <typename Number>
+    State<Number>
+    numerical_flux(const dg::NumericalFlux         type,
+                   const State<Number>            &U_m,
+                   const State<Number>            &U_p,
+                   const Tensor<1, dim, Number>   &n) const
+    {
+      if (type == dg::NumericalFlux::impedance)
+        return impedance_flux(U_m, U_p, n);
+      return dg::local_lax_friedrichs(*this, U_m, U_p, n);
+    }
+
+    /// Left (rows of L) and right (columns of R) eigenvectors of the flux
+    /// Jacobian in direction n at U; L R = I. Order: -c, 0.., +c.
+    void
+    eigenvectors(const State<double>     &U,
+                 const Tensor<1, dim>    &n,
+                 Tensor<2, n_components> &L,
+                 Tensor<2, n_components> &R) const
+    {
+      const double Z = mat.rho * max_wave_speed(U);
+      L = 0;
+      R = 0;
+      // lambda = -c: r = (1, Z n), l = (1/2, n/(2Z))
+      // lambda = +c: r = (1, -Z n), l = (1/2, -n/(2Z))
+      const unsigned int last = n_components - 1;
+      R[0][0] = R[0][last] = 1.;
+      L[0][0] = L[last][0] = 0.5;
+      for (int d = 0; d < dim; ++d)
+        {
+          R[1 + d][0]    = Z * n[d];
+          R[1 + d][last] = -Z * n[d];
+          L[0][1 + d]    = 0.5 * n[d] / Z;
+          L[last][1 + d] = -0.5 * n[d] / Z;
+        }
+      if constexpr (dim == 2)
+        {
+          // zero eigenvalue: tangential momentum t = (-n_y, n_x)
+          R[1][1] = L[1][1] = -n[1];
+          R[2][1] = L[1][2] = n[0];
+        }
+    }
+
+    /// Empty string when U is admissible, otherwise the failed test.
+    std::string
+    admissibility_violation(const State<double> &U) const
+    {
+      for (unsigned int c = 0; c < n_components; ++c)
+        if (!std::isfinite(U[c]))
+          return "state is not finite";
+      const double sp = stress_derivative(U[0]);
+      if (!(sp > 0.))
+        return "loss of hyperbolicity: sigma'(eps) = " + std::to_string(sp) +
+               " <= 0";
+      if (!std::isfinite(stress(U[0])))
+        return "stress is not finite";
+      return "";
+    }
+
+    const Material &
+    material() const
+    {
+      return mat;
+    }
+
+  private:
+    StressLaw law;
+    Material  mat;
+  };
+} // namespace granular_dg::elasticity

@@ -1,0 +1,195 @@
+#include <deal.II/base/mpi.h>
+
+#include <granular_dg/base/parameters.h>
+#include <granular_dg/base/simulation.h>
+
+#include <fstream>
+
+namespace granular_dg
+{
+  namespace
+  {
+    const EnumNames<dg::NumericalFlux> flux_names(
+      {{dg::NumericalFlux::local_lax_friedrichs, "local_lax_friedrichs"},
+       {dg::NumericalFlux::impedance, "impedance"}});
+    const EnumNames<dg::LimiterType> limiter_names(
+      {{dg::LimiterType::none, "none"},
+       {dg::LimiterType::componentwise, "componentwise"},
+       {dg::LimiterType::characteristic, "characteristic"}});
+
+    std::vector<double>
+    parse_doubles(const std::string &text, const std::string &parameter)
+    {
+      std::vector<double> out;
+      for (const auto &s : Utilities::split_string_list(text, ','))
+        {
+          try
+            {
+              out.push_back(Utilities::string_to_double(s));
+            }
+          catch (...)
+            {
+              require(false, parameter, text, "a comma-separated list of numbers");
+            }
+        }
+      return out;
+    }
+  } // namespace
+
+  void
+  CommonParameters::declare(ParameterHandler &prm, const std::string &fluxes)
+  {
+    prm.enter_subsection("Discretization");
+    prm.declare_entry("degree", "2", Patterns::Integer(0, 4),
+                      "Polynomial degree of the FE_DGQLegendre space (0 = finite "
+                      "volumes). Allowed: 0 to 4.");
+    prm.declare_entry("numerical flux", "local_lax_friedrichs",
+                      Patterns::Selection(fluxes),
+                      "Numerical flux on faces: local_lax_friedrichs (Rusanov) or the "
+                      "physics-specific one (impedance: linearised Godunov state with "
+                      "continuous velocity and stress).");
+    prm.leave_subsection();
+
+    prm.enter_subsection("Time stepping");
+    prm.declare_entry("final time", "1", Patterns::Double(),
+                      "End of the simulation. Must be > 0.");
+    prm.declare_entry("CFL number", "0.2", Patterns::Double(),
+                      "Courant number dt * sum_d(lambda_max / h_d). SSP-RK3 with DG "
+                      "of degree p is stable up to about 1/(2p+1). Allowed: (0, 1].");
+    prm.leave_subsection();
+
+    prm.enter_subsection("Limiter");
+    prm.declare_entry("scheme", "none", limiter_names.pattern(),
+                      "TVB minmod limiter on the Legendre modes after every stage: "
+                      "none, componentwise (conserved variables) or characteristic "
+                      "(eigenvectors of the flux Jacobian at the cell average).");
+    prm.declare_entry("TVB constant", "0", Patterns::Double(0),
+                      "M of the TVB minmod: slopes with |slope| <= M h^2 are not "
+                      "limited (0 = TVD minmod).");
+    prm.leave_subsection();
+
+    prm.enter_subsection("Output");
+    prm.declare_entry("directory", "output", Patterns::Anything(),
+                      "Where everything of the run goes (created if missing).");
+    prm.declare_entry("overwrite", "false", Patterns::Bool(),
+                      "Replace the results of a previous run in the directory; "
+                      "without it such a directory is refused.");
+    prm.declare_entry("output times", "", Patterns::Anything(),
+                      "Comma-separated times of the snapshots (besides t = 0 and the "
+                      "final time). Empty: use the output interval.");
+    prm.declare_entry("output interval", "0", Patterns::Double(0),
+                      "Snapshot every this much time when no output times are "
+                      "given (0: only the initial and final state).");
+    prm.declare_entry("profile points per cell", "0", Patterns::Integer(0, 20),
+                      "Sample points per cell in the 1D profile-NNNN.csv, equally "
+                      "spaced with both end points (1: the cell centre; 0: degree+1, "
+                      "at least 2).");
+    prm.declare_entry("write vtu", "true", Patterns::Bool(),
+                      "Write solution-NNNN.vtu snapshots and solution.pvd.");
+    prm.declare_entry("progress interval", "5", Patterns::Double(0),
+                      "Seconds of wall time between progress lines (0: none).");
+    prm.leave_subsection();
+
+    prm.enter_subsection("Convergence");
+    prm.declare_entry("enabled", "false", Patterns::Bool(),
+                      "Run a convergence study against the exact solution instead "
+                      "of a single run.");
+    prm.declare_entry("degrees", "0,1,2,3,4", Patterns::List(Patterns::Integer(0, 4)),
+                      "Degrees of the study.");
+    prm.declare_entry("cells", "16,32,64,128", Patterns::List(Patterns::Integer(1)),
+                      "Numbers of cells (per direction) of the study, coarse to fine.");
+    prm.leave_subsection();
+  }
+
+  void
+  CommonParameters::parse(ParameterHandler &prm)
+  {
+    prm.enter_subsection("Discretization");
+    degree = prm.get_integer("degree");
+    flux   = flux_names.parse("Discretization/numerical flux", prm.get("numerical flux"));
+    prm.leave_subsection();
+
+    prm.enter_subsection("Time stepping");
+    final_time = prm.get_double("final time");
+    cfl        = prm.get_double("CFL number");
+    prm.leave_subsection();
+    require(final_time > 0, "Time stepping/final time", final_time, "must be > 0");
+    require(cfl > 0 && cfl <= 1, "Time stepping/CFL number", cfl,
+            "must be in (0, 1] (SSP-RK3 DG of degree p is stable up to about 1/(2p+1))");
+
+    prm.enter_subsection("Limiter");
+    limiter = limiter_names.parse("Limiter/scheme", prm.get("scheme"));
+    tvb_M   = prm.get_double("TVB constant");
+    prm.leave_subsection();
+
+    prm.enter_subsection("Output");
+    directory         = prm.get("directory");
+    overwrite         = prm.get_bool("overwrite");
+    output_times      = parse_doubles(prm.get("output times"), "Output/output times");
+    output_interval   = prm.get_double("output interval");
+    profile_points    = prm.get_integer("profile points per cell");
+    write_vtu         = prm.get_bool("write vtu");
+    progress_interval = prm.get_double("progress interval");
+    prm.leave_subsection();
+    for (const double t : output_times)
+      require(t > 0 && t <= final_time, "Output/output times", prm.get("Output/output times") ,
+              "times in (0, final time]");
+
+    prm.enter_subsection("Convergence");
+    convergence = prm.get_bool("enabled");
+    for (const auto &s : Utilities::split_string_list(prm.get("degrees")))
+      convergence_degrees.push_back(Utilities::string_to_int(s));
+    for (const auto &s : Utilities::split_string_list(prm.get("cells")))
+      convergence_cells.push_back(Utilities::string_to_int(s));
+    prm.leave_subsection();
+    if (convergence)
+      require(convergence_cells.size() >= 2 && !convergence_degrees.empty(),
+              "Convergence/cells", convergence_cells.size(),
+              "at least two mesh sizes and one degree for a study");
+  }
+
+  void
+  begin_output(const ParameterHandler &prm, const CommonParameters &params)
+  {
+    if (Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) == 0)
+      {
+        prepare_output_directory(params.directory, params.overwrite);
+        std::ofstream out(params.directory + "/parameters.prm");
+        prm.print_parameters(out, ParameterHandler::ShortPRM);
+      }
+    // the other ranks write into the directory only after it exists
+    MPI_Barrier(MPI_COMM_WORLD);
+  }
+
+  void
+  write_summary(const std::string &directory, const std::string &scene, const int dim,
+                const unsigned int degree, const RunResult &r)
+  {
+    if (Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) != 0)
+      return;
+    JsonObject s;
+    s.add("scene", scene);
+    s.add("dim", static_cast<long long>(dim));
+    s.add("degree", degree);
+    s.add("n_cells", static_cast<long long>(r.n_cells));
+    s.add("n_dofs", static_cast<long long>(r.n_dofs));
+    s.add("n_time_steps", static_cast<long long>(r.n_steps));
+    s.add("final_time", r.final_time);
+    s.add("wall_time_s", r.wall_time_s);
+    s.add("time_loop_s", r.time_loop_s);
+    s.add("dof_updates_per_s", r.dof_updates_per_s);
+    s.add("n_mpi_ranks", static_cast<long long>(Utilities::MPI::n_mpi_processes(MPI_COMM_WORLD)));
+    s.add("status", r.status);
+    if (!r.errors.empty())
+      {
+        JsonObject e;
+        e.add("l2_all_components", r.l2_error);
+        for (unsigned int c = 0; c < r.errors.size(); ++c)
+          e.add("component_" + std::to_string(c) + "_l1_l2_linf",
+                std::vector<double>(r.errors[c].begin(), r.errors[c].end()));
+        s.add_object("errors", e);
+      }
+    s.add_object("diagnostics", r.diagnostics);
+    s.write(directory + "/summary.json");
+  }
+} // namespace granular_dg

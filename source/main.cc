@@ -1,0 +1,209 @@
+/**
+ * granular_dg: explicit discontinuous Galerkin solvers for the conservation
+ * laws of granular and layered media. See README.md and doc/.
+ */
+
+#include <deal.II/base/mpi.h>
+#include <deal.II/base/revision.h>
+
+#include <granular_dg/base/errors.h>
+#include <granular_dg/base/parameters.h>
+#include <granular_dg/base/simulation.h>
+#include <granular_dg/scenes/scenes.h>
+#include <granular_dg/version.h>
+
+#include <fstream>
+#include <iostream>
+#include <regex>
+
+using namespace granular_dg;
+
+namespace granular_dg
+{
+  const std::vector<Scene> &
+  all_scenes()
+  {
+    static const std::vector<Scene> scenes{elasticity::scene()};
+    return scenes;
+  }
+} // namespace granular_dg
+
+namespace
+{
+  std::string
+  scene_list()
+  {
+    std::string s;
+    for (const auto &scene : all_scenes())
+      s += (s.empty() ? "" : "|") + scene.name;
+    return s;
+  }
+
+  const Scene &
+  find_scene(const std::string &name, const std::string &where)
+  {
+    for (const auto &scene : all_scenes())
+      if (scene.name == name)
+        return scene;
+    require(false, where, name, "one of " + scene_list());
+    return all_scenes().front();
+  }
+
+  void
+  declare_all(ParameterHandler &prm, const Scene &scene)
+  {
+    prm.declare_entry("scene", scene.name, Patterns::Selection(scene_list()),
+                      "The scene to run: " + scene_list() + ".");
+    CommonParameters::declare(prm, scene.fluxes);
+    scene.declare(prm);
+  }
+
+  /// The scene named by the top-level `set scene = NAME` of a prm file (or a
+  /// --set scene=NAME override), found before the parameters are declared,
+  /// since what is declared depends on it.
+  std::string
+  find_scene_name(const std::string &filename, const std::vector<std::string> &overrides)
+  {
+    std::string name;
+    for (const auto &o : overrides)
+      if (o.rfind("scene=", 0) == 0)
+        name = Utilities::trim(o.substr(6));
+    if (!name.empty())
+      return name;
+    std::ifstream in(filename);
+    if (!in)
+      throw InputError("cannot open parameter file '" + filename +
+                       "': it does not exist or is not readable");
+    const std::regex pattern(R"(^\s*set\s+scene\s*=\s*([^#\s]*)\s*(#.*)?$)");
+    const std::regex section(R"(^\s*subsection\s)"), end(R"(^\s*end\s*(#.*)?$)");
+    std::string line;
+    int         depth = 0;
+    std::smatch match;
+    while (std::getline(in, line))
+      {
+        if (std::regex_search(line, section))
+          ++depth;
+        else if (std::regex_search(line, end))
+          --depth;
+        else if (depth == 0 && std::regex_match(line, match, pattern))
+          name = match[1];
+      }
+    if (name.empty())
+      throw InputError("parameter file '" + filename +
+                       "' does not say which scene to run: add 'set scene = NAME' "
+                       "with NAME one of " + scene_list());
+    return name;
+  }
+
+  void
+  print_help()
+  {
+    std::cout
+      << "granular_dg " << GRANULAR_DG_VERSION
+      << " - explicit DG for granular and layered media\n\n"
+         "Usage:\n"
+         "  granular_dg CASE.prm [--set Section/name=value ...]   run a case\n"
+         "  granular_dg --print-parameters SCENE                   all parameters of a scene,\n"
+         "                                                         with defaults and documentation\n"
+         "  granular_dg --version | --help\n\n"
+         "Scenes:\n";
+    for (const auto &scene : all_scenes())
+      std::cout << "  " << scene.name << ": " << scene.description << '\n';
+    std::cout
+      << "\nA run writes to Output/directory: solution.pvd + solution-NNNN.vtu (ParaView),\n"
+         "profile-NNNN.csv (1D), timeseries.csv, summary.json and parameters.prm.\n"
+         "Exit codes: 0 completed, 1 bad input, 2 run failed (inadmissible state;\n"
+         "the last good state is written), 3 internal error.\n"
+         "Examples are in prm/; documentation in doc/.\n";
+  }
+} // namespace
+
+int
+main(int argc, char **argv)
+{
+  Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
+  const bool root = Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) == 0;
+  try
+    {
+      std::vector<std::string> args(argv + 1, argv + argc), overrides;
+      std::string              filename;
+      for (unsigned int i = 0; i < args.size(); ++i)
+        {
+          const std::string &a = args[i];
+          if (a == "--help" || a == "-h")
+            {
+              if (root)
+                print_help();
+              return 0;
+            }
+          else if (a == "--version")
+            {
+              if (root)
+                std::cout << "granular_dg " << GRANULAR_DG_VERSION << " (git "
+                          << GRANULAR_DG_GIT_REVISION << "), deal.II "
+                          << DEAL_II_PACKAGE_VERSION << std::endl;
+              return 0;
+            }
+          else if (a == "--print-parameters")
+            {
+              const std::string name = i + 1 < args.size() ? args[i + 1] : "";
+              if (name.empty())
+                throw InputError("--print-parameters needs a scene: one of " + scene_list());
+              ParameterHandler prm;
+              declare_all(prm, find_scene(name, "--print-parameters"));
+              prm.set("scene", name);
+              if (root)
+                prm.print_parameters(std::cout, ParameterHandler::PRM);
+              return 0;
+            }
+          else if (a == "--set")
+            {
+              if (i + 1 >= args.size())
+                throw InputError("--set needs an argument Section/name=value");
+              overrides.push_back(args[++i]);
+            }
+          else if (a.rfind("--set=", 0) == 0)
+            overrides.push_back(a.substr(6));
+          else if (a.rfind("-", 0) == 0)
+            throw InputError("unknown option '" + a + "' (see granular_dg --help)");
+          else if (filename.empty())
+            filename = a;
+          else
+            throw InputError("more than one parameter file given ('" + filename +
+                             "' and '" + a + "')");
+        }
+      if (filename.empty())
+        {
+          if (root)
+            print_help();
+          return 1;
+        }
+
+      const Scene     &scene = find_scene(find_scene_name(filename, overrides), "scene");
+      ParameterHandler prm;
+      declare_all(prm, scene);
+      parse_parameters(prm, filename, overrides);
+      if (root)
+        std::cout << "granular_dg " << GRANULAR_DG_VERSION << ": scene '" << scene.name
+                  << "' from " << filename << std::endl;
+      scene.run(prm);
+    }
+  catch (const InputError &e)
+    {
+      if (root)
+        std::cerr << "granular_dg: error: " << e.what() << std::endl;
+      return 1;
+    }
+  catch (const RunError &e)
+    {
+      if (root)
+        std::cerr << "granular_dg: run failed: " << e.what() << std::endl;
+      return 2;
+    }
+  catch (const std::exception &e)
+    {
+      std::cerr << "granular_dg: internal error: " << one_line_message(e) << std::endl;
+      return 3;
+    }
+  return 0;
+}
