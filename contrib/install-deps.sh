@@ -9,7 +9,7 @@ packages=(
   libdeal.ii-dev          # deal.II 9.4.1 with MPI, p4est, Trilinos, HDF5, SUNDIALS, Boost
   openmpi-bin libopenmpi-dev
   numdiff                 # regression-test comparison
-  paraview xvfb           # pvpython as a real-client test of the VTU/PVD output
+  paraview python3-paraview xvfb  # pvpython: a real-client test of the VTU/PVD output
   python3-matplotlib python3-numpy  # figures in doc/ (run with /usr/bin/python3)
 )
 

@@ -4,7 +4,9 @@
 #include <granular_dg/base/parameters.h>
 
 #include <fstream>
+#include <iostream>
 #include <map>
+#include <regex>
 #include <sstream>
 
 namespace granular_dg
@@ -22,37 +24,81 @@ namespace granular_dg
     return out;
   }
 
+  namespace
+  {
+    /// Silences std::cerr for its lifetime: deal.II's FunctionParser prints
+    /// muparser's diagnostics there before it throws, and bad input must
+    /// give exactly one line.
+    class QuietCerr
+    {
+    public:
+      QuietCerr()
+        : saved(std::cerr.rdbuf(sink.rdbuf()))
+      {}
+      ~QuietCerr()
+      {
+        std::cerr.rdbuf(saved);
+      }
+
+    private:
+      std::ostringstream sink;
+      std::streambuf    *saved;
+    };
+
+    template <int dim>
+    void
+    initialize_parser(FunctionParser<dim>            &f,
+                      const std::string              &vars,
+                      const std::vector<std::string> &expressions,
+                      const bool                      time_dependent)
+    {
+      QuietCerr quiet;
+      f.initialize(vars,
+                   expressions,
+                   std::map<std::string, double>{{"pi", numbers::PI}},
+                   time_dependent);
+      // evaluate once so that errors muparser finds only at evaluation time
+      // (unknown variables) surface here, not in the middle of a run
+      Vector<double> values(expressions.size());
+      f.vector_value(Point<dim>(), values);
+    }
+  } // namespace
+
   template <int dim>
   std::shared_ptr<FunctionParser<dim>>
   make_function(const std::vector<std::string> &expressions,
-                const std::string              &parameter,
+                const std::vector<std::string> &parameters,
                 const bool                      time_dependent)
   {
     const std::string vars = std::string(dim == 1 ? "x" : dim == 2 ? "x,y" : "x,y,z") +
                              (time_dependent ? ",t" : "");
+    const std::string allowed =
+      "an expression in " + vars + " and the constant pi";
+    // one at a time first, so that an error names the faulty expression
+    for (unsigned int i = 0; i < expressions.size(); ++i)
+      {
+        const std::string &name = parameters[std::min<std::size_t>(i, parameters.size() - 1)];
+        FunctionParser<dim> single(1);
+        try
+          {
+            require(!expressions[i].empty(), name, expressions[i], allowed);
+            initialize_parser(single, vars, {expressions[i]}, time_dependent);
+          }
+        catch (const InputError &)
+          {
+            throw;
+          }
+        catch (const std::exception &e)
+          {
+            std::string reason = one_line_message(e);
+            const auto  said   = reason.find("The parser said: ");
+            if (said != std::string::npos)
+              reason = reason.substr(said + 17);
+            require(false, name, expressions[i], allowed + " (" + reason + ")");
+          }
+      }
     auto f = std::make_shared<FunctionParser<dim>>(expressions.size());
-    try
-      {
-        f->initialize(vars,
-                      expressions,
-                      std::map<std::string, double>{{"pi", numbers::PI}},
-                      time_dependent);
-        // evaluate once so that errors muparser finds only at evaluation time
-        // (unknown variables) surface here, not in the middle of a run
-        Vector<double> values(expressions.size());
-        f->vector_value(Point<dim>(), values);
-      }
-    catch (const std::exception &e)
-      {
-        std::string joined;
-        for (const auto &x : expressions)
-          joined += (joined.empty() ? "" : "; ") + x;
-        require(false,
-                parameter,
-                joined,
-                "expressions in " + vars + " and the constant pi (" +
-                  one_line_message(e) + ")");
-      }
+    initialize_parser(*f, vars, expressions, time_dependent);
     return f;
   }
 
@@ -82,6 +128,84 @@ namespace granular_dg
     return result;
   }
 
+  namespace
+  {
+    /// The "Section/Sub/" path in force at line `line` (1-based) of a prm
+    /// file, so that an error can name the parameter as --set would.
+    std::string
+    section_path_at(const std::string &filename, const unsigned int line)
+    {
+      std::ifstream            in(filename);
+      std::vector<std::string> stack;
+      std::string              text;
+      const std::regex         enter(R"(^\s*subsection\s+(.*\S)\s*$)");
+      const std::regex         leave(R"(^\s*end\s*(#.*)?$)");
+      std::smatch              m;
+      for (unsigned int n = 1; n < line && std::getline(in, text); ++n)
+        {
+          text = text.substr(0, text.find('#'));
+          if (std::regex_match(text, m, enter))
+            stack.push_back(m[1]);
+          else if (std::regex_match(text, leave) && !stack.empty())
+            stack.pop_back();
+        }
+      std::string path;
+      for (const auto &s : stack)
+        path += s + "/";
+      return path;
+    }
+
+    /// Turns ParameterHandler's messages into our one-line form naming the
+    /// parameter, its value and what is allowed.
+    std::string
+    translate_parameter_error(const std::string &message,
+                              const std::string &filename,
+                              const std::string &set_path)
+    {
+      std::smatch m;
+      // parse_input: "Line <3> of file <f.prm>: The entry value 9 for the
+      // entry named degree does not match the given pattern: [..]"
+      static const std::regex file_pattern(
+        R"(Line <(\d+)> of file <[^>]*>: The entry value (.*) for the entry named (.*) does not match the given pattern: (.*))");
+      static const std::regex file_unknown(
+        R"(Line <(\d+)> of file <[^>]*>: No entry with name <(.*)> was declared in the current subsection.*)");
+      static const std::regex file_line(R"(Line <(\d+)> of file <[^>]*>: (.*))");
+      // set(): "The string <9> does not match the given pattern <[..]>."
+      static const std::regex set_pattern(
+        R"(.*The string <(.*)> does not match the given pattern <(.*)>\.?)");
+      static const std::regex set_unknown(R"(.*You can't ask for entry <(.*)> you have not yet declared\.?)");
+      static const std::regex set_section(R"(.*There is no subsection <(.*)> .*)");
+
+      const std::string hint = " (granular_dg --print-parameters SCENE lists them all)";
+      if (std::regex_match(message, m, file_pattern))
+        {
+          const unsigned int line = std::stoul(m[1]);
+          return "parameter '" + section_path_at(filename, line) + m[3].str() +
+                 "' = '" + m[2].str() + "' (" + filename + " line " + m[1].str() +
+                 ") is not allowed: " + m[4].str();
+        }
+      if (std::regex_match(message, m, file_unknown))
+        {
+          const unsigned int line = std::stoul(m[1]);
+          return "unknown parameter '" + section_path_at(filename, line) +
+                 m[2].str() + "' (" + filename + " line " + m[1].str() + ")" + hint;
+        }
+      if (std::regex_match(message, m, file_line))
+        return filename + " line " + m[1].str() + ": " + m[2].str();
+      if (!set_path.empty())
+        {
+          if (std::regex_match(message, m, set_pattern))
+            return "parameter '" + set_path + "' = '" + m[1].str() +
+                   "' (--set) is not allowed: " + m[2].str();
+          if (std::regex_match(message, m, set_unknown) ||
+              std::regex_match(message, m, set_section))
+            return "unknown parameter '" + set_path + "' (--set)" + hint;
+          return "in --set '" + set_path + "': " + message;
+        }
+      return "in parameter file '" + filename + "': " + message;
+    }
+  } // namespace
+
   void
   parse_parameters(ParameterHandler               &prm,
                    const std::string              &filename,
@@ -95,12 +219,13 @@ namespace granular_dg
     }
     try
       {
-        prm.parse_input(filename, "", true);
+        // undeclared entries are errors: a typo must never be ignored
+        prm.parse_input(filename, "", false);
       }
     catch (const std::exception &e)
       {
-        throw InputError("in parameter file '" + filename +
-                         "': " + one_line_message(e));
+        throw InputError(
+          translate_parameter_error(one_line_message(e), filename, ""));
       }
 
     for (const auto &o : overrides)
@@ -109,8 +234,9 @@ namespace granular_dg
         if (eq == std::string::npos)
           throw InputError("--set '" + o +
                            "' is not of the form Section/name=value");
+        const std::string path_text = Utilities::trim(o.substr(0, eq));
         std::vector<std::string> path =
-          Utilities::split_string_list(o.substr(0, eq), '/');
+          Utilities::split_string_list(path_text, '/');
         const std::string value = Utilities::trim(o.substr(eq + 1));
         const std::string name  = path.back();
         path.pop_back();
@@ -128,7 +254,9 @@ namespace granular_dg
           {
             for (; depth > 0; --depth)
               prm.leave_subsection();
-            throw InputError("in --set '" + o + "': " + one_line_message(e));
+            throw InputError(translate_parameter_error(one_line_message(e),
+                                                       filename,
+                                                       path_text));
           }
         for (; depth > 0; --depth)
           prm.leave_subsection();
@@ -136,7 +264,7 @@ namespace granular_dg
   }
 
   template std::shared_ptr<FunctionParser<1>>
-  make_function<1>(const std::vector<std::string> &, const std::string &, bool);
+  make_function<1>(const std::vector<std::string> &, const std::vector<std::string> &, bool);
   template std::shared_ptr<FunctionParser<2>>
-  make_function<2>(const std::vector<std::string> &, const std::string &, bool);
+  make_function<2>(const std::vector<std::string> &, const std::vector<std::string> &, bool);
 } // namespace granular_dg

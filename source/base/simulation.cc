@@ -125,15 +125,16 @@ namespace granular_dg
     prm.enter_subsection("Output");
     directory         = prm.get("directory");
     overwrite         = prm.get_bool("overwrite");
-    output_times      = parse_doubles(prm.get("output times"), "Output/output times");
+    const std::string output_times_text = prm.get("output times");
+    output_times      = parse_doubles(output_times_text, "Output/output times");
     output_interval   = prm.get_double("output interval");
     profile_points    = prm.get_integer("profile points per cell");
     write_vtu         = prm.get_bool("write vtu");
     progress_interval = prm.get_double("progress interval");
     prm.leave_subsection();
     for (const double t : output_times)
-      require(t > 0 && t <= final_time, "Output/output times", prm.get("Output/output times") ,
-              "times in (0, final time]");
+      require(t > 0 && t <= final_time, "Output/output times", output_times_text,
+              "times in (0, final time = " + format_number(final_time) + "]");
 
     prm.enter_subsection("Convergence");
     convergence = prm.get_bool("enabled");

@@ -68,11 +68,12 @@ namespace granular_dg
   split_expressions(const std::string &text, char separator = ';');
 
   /// A FunctionParser of x (and y in 2D) and, when time_dependent, t, with the
-  /// constant pi; a malformed expression is an InputError naming parameter.
+  /// constant pi. A malformed expression is an InputError naming its
+  /// parameter: parameters[i] for expression i (one name for all is fine).
   template <int dim>
   std::shared_ptr<FunctionParser<dim>>
   make_function(const std::vector<std::string> &expressions,
-                const std::string              &parameter,
+                const std::vector<std::string> &parameters,
                 bool                            time_dependent = true);
 
   /// Parse a file into prm and apply "Section/sub/name=value" overrides;

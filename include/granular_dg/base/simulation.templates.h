@@ -2,6 +2,8 @@
 
 #include <deal.II/base/quadrature.h>
 #include <deal.II/base/timer.h>
+
+#include <optional>
 #include <deal.II/base/utilities.h>
 #include <deal.II/dofs/dof_handler.h>
 #include <deal.II/fe/fe_dgq.h>
@@ -233,6 +235,7 @@ namespace granular_dg
     {
       double                  time;
       dg::AdmissibilityReport report;
+      bool                    initial = false;
     };
   } // namespace internal
 
@@ -272,7 +275,11 @@ namespace granular_dg
     result.n_cells = tria.n_global_active_cells();
     result.h_min   = GridTools::minimal_cell_diameter(tria);
 
-    TimerOutput timer(comm, std::cout, TimerOutput::never, TimerOutput::wall_times);
+    // an optional, so that a failed run can destroy it before throwing: a
+    // TimerOutput destroyed during stack unwinding prints an MPI warning
+    std::optional<TimerOutput> timer_storage;
+    timer_storage.emplace(comm, std::cout, TimerOutput::never, TimerOutput::wall_times);
+    TimerOutput &timer = *timer_storage;
 
     const auto output_times = internal::output_schedule(params);
     internal::SnapshotWriter<dim, Physics> snapshots(
@@ -345,6 +352,11 @@ namespace granular_dg
     unsigned int next_output = 0;
     try
       {
+        {
+          const auto report = op.check_admissibility(solution);
+          if (!report.ok)
+            throw internal::Inadmissible{0., report, true};
+        }
         while (next_output < output_times.size())
           {
             const double speed = op.max_speed_over_h(solution);
@@ -379,8 +391,11 @@ namespace granular_dg
     catch (const internal::Inadmissible &failure)
       {
         std::ostringstream msg;
-        msg << "inadmissible state at t = " << format_number(failure.time)
-            << " (step " << step + 1 << "), x = (";
+        if (failure.initial)
+          msg << "inadmissible initial state at x = (";
+        else
+          msg << "inadmissible state at t = " << format_number(failure.time)
+              << " (step " << step + 1 << "), x = (";
         for (int d = 0; d < dim; ++d)
           msg << (d ? ", " : "") << format_number(failure.report.position[d]);
         msg << "), state (";
@@ -389,7 +404,9 @@ namespace granular_dg
               << format_number(failure.report.state[c]);
         msg << "): " << failure.report.reason;
         result.status = "failed: " + msg.str();
-        if (write_files)
+        if (write_files && failure.initial)
+          msg << "; initial state written to " << params.directory << "/";
+        else if (write_files)
           {
             solution = last_good;
             const std::string file = snapshots.write(dof_handler, mapping, solution, t);
@@ -401,6 +418,7 @@ namespace granular_dg
         result.wall_time_s = wall_timer.wall_time();
         if (write_files)
           write_summary(params.directory, scene.scene, dim, degree, result);
+        timer_storage.reset();
         throw RunError(msg.str());
       }
     catch (const RunError &e)
@@ -414,6 +432,7 @@ namespace granular_dg
             snapshots.write(dof_handler, mapping, solution, t);
             write_summary(params.directory, scene.scene, dim, degree, result);
           }
+        timer_storage.reset();
         throw;
       }
 

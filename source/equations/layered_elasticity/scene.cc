@@ -173,8 +173,10 @@ namespace granular_dg::elasticity
               std::to_string(dim) + " expression(s) separated by ';'");
       std::vector<std::string> all{strain};
       all.insert(all.end(), v.begin(), v.end());
+      std::vector<std::string> names{section + "/strain"};
+      names.resize(all.size(), section + "/velocity");
       return std::make_shared<PrimitiveToConserved<dim>>(
-        make_function<dim>(all, section + "/strain; velocity", time_dependent), rho);
+        make_function<dim>(all, names, time_dependent), rho);
     }
 
     template <int dim>
@@ -267,7 +269,7 @@ namespace granular_dg::elasticity
                           side_names.name(sides[b]) + " takes " + std::to_string(expected) +
                             " expression(s) separated by ';'");
                   bc.data = std::make_shared<BoundaryData<dim>>(
-                    make_function<dim>(expr, name, true), sides[b], m.rho);
+                    make_function<dim>(expr, {name}, true), sides[b], m.rho);
                 }
               scene.boundary[b] = bc;
             }

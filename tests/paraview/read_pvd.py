@@ -1,0 +1,42 @@
+"""Opens a granular_dg solution.pvd (absolute path) with ParaView's own
+reader, as the GUI does, and prints what a user would see: the number of
+time steps, their times, the point-array names and, per step, whether any
+value is NaN/Inf and how many points it has. Run by run_test.py under
+`pvpython --no-mpi`; the output is compared with a hand-written file.
+Reader errors are only logged by ParaView, so the data is checked, not
+exceptions."""
+import math
+import sys
+
+from paraview import servermanager
+from paraview.simple import OpenDataFile, UpdatePipeline
+
+path = sys.argv[1]
+reader = OpenDataFile(path)
+if reader is None:
+    sys.exit('cannot open ' + path)
+times = list(reader.TimestepValues) if reader.TimestepValues else []
+print('time_steps %d' % len(times))
+print('times ' + ' '.join('%g' % t for t in times))
+names = None
+for t in times:
+    UpdatePipeline(time=t, proxy=reader)
+    data = servermanager.Fetch(reader)
+    # a .pvd gives a multiblock or a single data set depending on version
+    if data.IsA('vtkMultiBlockDataSet'):
+        data = data.GetBlock(0)
+    pd = data.GetPointData()
+    step_names = sorted(pd.GetArrayName(i) for i in range(pd.GetNumberOfArrays()))
+    if names is None:
+        names = step_names
+        print('arrays ' + ' '.join(names))
+    elif names != step_names:
+        print('arrays differ at t = %g: %s' % (t, step_names))
+    bad = 0
+    for i in range(pd.GetNumberOfArrays()):
+        a = pd.GetArray(i)
+        for j in range(a.GetNumberOfTuples()):
+            for k in range(a.GetNumberOfComponents()):
+                if not math.isfinite(a.GetComponent(j, k)):
+                    bad += 1
+    print('t %g points %d non_finite_values %d' % (t, data.GetNumberOfPoints(), bad))
