@@ -24,6 +24,7 @@ check(const StressLaw law, const char *law_name)
   constexpr unsigned int nc = Sys::n_components;
   const Material         mat{2.0, 2.0, 0.3};
   const Sys              sys(law, mat);
+  const auto             a = Sys::coefficients_of(mat);
   std::mt19937           gen(42);
   std::uniform_real_distribution<double> r(-0.3, 0.3);
 
@@ -42,13 +43,13 @@ check(const StressLaw law, const char *law_name)
         n[d] = r(gen) + (d == 0 ? 1. : 0.);
       n /= n.norm();
 
-      const auto F = sys.flux(U);
+      const auto F = sys.flux(U, a);
       for (const auto type : {dg::NumericalFlux::local_lax_friedrichs,
                               dg::NumericalFlux::impedance})
         {
-          const auto Fs = sys.numerical_flux(type, U, U, n);
-          const auto Fa = sys.numerical_flux(type, U, V, n);
-          const auto Fb = sys.numerical_flux(type, V, U, -n);
+          const auto Fs = sys.numerical_flux(type, U, U, n, a, a);
+          const auto Fa = sys.numerical_flux(type, U, V, n, a, a);
+          const auto Fb = sys.numerical_flux(type, V, U, -n, a, a);
           for (unsigned int c = 0; c < nc; ++c)
             {
               e_consistency = std::max(e_consistency, std::abs(Fs[c] - F[c] * n));
@@ -64,14 +65,14 @@ check(const StressLaw law, const char *law_name)
           auto Up = U, Um = U;
           Up[j] += h;
           Um[j] -= h;
-          const auto Fp = sys.flux(Up), Fm = sys.flux(Um);
+          const auto Fp = sys.flux(Up, a), Fm = sys.flux(Um, a);
           for (unsigned int i = 0; i < nc; ++i)
             A[i][j] = (Fp[i] * n - Fm[i] * n) / (2 * h);
         }
       Tensor<2, nc> L, R;
-      sys.eigenvectors(U, n, L, R);
-      const double c = std::sqrt(sys.stress_derivative(U[0]) / mat.rho);
-      e_speed        = std::max(e_speed, std::abs(sys.max_wave_speed(U) - c));
+      sys.eigenvectors(U, n, a, L, R);
+      const double c = std::sqrt(sys.stress_derivative(U[0], a) / mat.rho);
+      e_speed        = std::max(e_speed, std::abs(sys.max_wave_speed(U, a) - c));
       for (unsigned int k = 0; k < nc; ++k)
         {
           const double lambda = k == 0 ? -c : (k == nc - 1 ? c : 0.);
@@ -90,10 +91,10 @@ check(const StressLaw law, const char *law_name)
       const double eps = U[0];
       e_derivative     = std::max(
         {e_derivative,
-         std::abs((sys.stress(eps + h) - sys.stress(eps - h)) / (2 * h) -
-                  sys.stress_derivative(eps)),
-         std::abs((sys.stored_energy(eps + h) - sys.stored_energy(eps - h)) / (2 * h) -
-                  sys.stress(eps))});
+         std::abs((sys.stress(eps + h, a) - sys.stress(eps - h, a)) / (2 * h) -
+                  sys.stress_derivative(eps, a)),
+         std::abs((sys.stored_energy(eps + h, a) - sys.stored_energy(eps - h, a)) / (2 * h) -
+                  sys.stress(eps, a))});
     }
   std::printf("%s dim=%d flux consistency error %.1e\n", law_name, dim, e_consistency);
   std::printf("%s dim=%d flux conservation error %.1e\n", law_name, dim, e_conservation);

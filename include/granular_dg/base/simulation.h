@@ -2,11 +2,15 @@
 
 #include <deal.II/base/function.h>
 #include <deal.II/base/parameter_handler.h>
+#include <deal.II/dofs/dof_handler.h>
+#include <deal.II/fe/mapping.h>
 #include <deal.II/grid/tria.h>
 
 #include <granular_dg/base/output.h>
 #include <granular_dg/dg/boundary.h>
 #include <granular_dg/dg/limiter.h>
+#include <granular_dg/dg/modal_layout.h>
+#include <granular_dg/dg/time_integrator.h>
 #include <granular_dg/dg/numerical_flux.h>
 
 #include <array>
@@ -53,6 +57,56 @@ namespace granular_dg
     parse(ParameterHandler &prm);
   };
 
+  /**
+   * What a scene adds to the generic time loop of run_simulation(): implicit
+   * stage operations, diagnostics and end-of-run analysis. Every method has
+   * an empty default, so a scene overrides only what it needs.
+   */
+  template <int dim>
+  class SceneHooks
+  {
+  public:
+    virtual ~SceneHooks() = default;
+
+    /// Once the discretisation exists (the layout gives cell-wise access to
+    /// the Legendre modes of the solution vector).
+    virtual void
+    initialize(const DoFHandler<dim> &, const Mapping<dim> &, const dg::ModalLayout<dim> &)
+    {}
+
+    /// After every Runge-Kutta stage, before the limiter: implicit stage
+    /// operations (e.g. a friction projection). weight is the effective time
+    /// step of the explicit update in the stage (SSPRK3: dt, dt/4, 2dt/3).
+    virtual void
+    post_stage(dg::VectorType &, double /*stage_time*/, double /*weight*/)
+    {}
+
+    /// After every completed step (cheap per-step diagnostics).
+    virtual void
+    end_of_step(const dg::VectorType &, double /*t*/, double /*dt*/, unsigned long /*step*/)
+    {}
+
+    /// Extra columns of timeseries.csv, and their values at an output time.
+    virtual std::vector<std::string>
+    timeseries_names() const
+    {
+      return {};
+    }
+    virtual std::vector<double>
+    timeseries_values(const dg::VectorType &, double /*t*/)
+    {
+      return {};
+    }
+
+    /// At the end of a run (also of a failed one, with the last good state):
+    /// scene diagnostics for summary.json and, when write_files, extra files
+    /// in directory.
+    virtual void
+    finish(const dg::VectorType &, double /*t*/, JsonObject & /*diagnostics*/,
+           const std::string & /*directory*/, bool /*write_files*/)
+    {}
+  };
+
   /// What a scene hands to the solver: its physics, mesh, boundary and
   /// initial data and, where known, the exact solution (conserved variables).
   template <int dim, typename Physics>
@@ -64,6 +118,13 @@ namespace granular_dg
     dg::BoundaryMap<dim>                 boundary;
     std::shared_ptr<Function<dim>>       initial;
     std::shared_ptr<Function<dim>>       exact;
+    /// optional: stage operations and diagnostics of the scene
+    std::shared_ptr<SceneHooks<dim>>     hooks;
+    /// the time step uses max(lambda_max(U), this) as wave speed: for states
+    /// at rest whose speed is 0 (sigma'(0) = 0), the speed the scene will reach
+    double                               min_wave_speed = 0.;
+    /// the name of the evolution variable in messages ("t"; the hopper: "tau")
+    std::string                          time_name = "t";
   };
 
   /// The outcome of one run, for summary.json and the convergence table.

@@ -47,7 +47,8 @@ namespace granular_dg
             Tensor<1, Physics::n_components> U;
             for (unsigned int c = 0; c < Physics::n_components; ++c)
               U[c] = inputs.solution_values[q][c];
-            const auto d = physics.derived(U);
+            const auto d = physics.derived(
+              U, physics.coefficients(inputs.template get_cell<dim>()->material_id()));
             for (unsigned int i = 0; i < d.size(); ++i)
               computed[q][i] = d[i];
           }
@@ -186,6 +187,7 @@ namespace granular_dg
           {
             fe_values.reinit(cell);
             fe_values.get_function_values(solution, values);
+            const auto a = physics.coefficients(cell->material_id());
             for (unsigned int q = 0; q < points.size(); ++q)
               {
                 Tensor<1, Physics::n_components> U;
@@ -195,7 +197,7 @@ namespace granular_dg
                     U[c] = values[q][c];
                     row.push_back(U[c]);
                   }
-                for (const double d : physics.derived(U))
+                for (const double d : physics.derived(U, a))
                   row.push_back(d);
                 csv.row(row);
               }
@@ -259,16 +261,21 @@ namespace granular_dg
 
     dg::DGOperator<dim, Physics> op(scene.physics, params.flux, scene.boundary);
     op.reinit(mapping, dof_handler);
-    dg::ModalLimiter<dim, Physics> limiter(scene.physics, params.limiter, params.tvb_M);
+    dg::ModalLimiter<dim, Physics> limiter(scene.physics, params.limiter, params.tvb_M,
+                                           scene.boundary);
     limiter.reinit(dof_handler);
-    dg::SSPRK3 integrator;
+    dg::SSPRK3<> integrator;
+    SceneHooks<dim> no_hooks;
+    SceneHooks<dim> &hooks = scene.hooks ? *scene.hooks : no_hooks;
+    hooks.initialize(dof_handler, mapping, limiter.layout());
 
     dg::VectorType solution, last_good;
     op.initialize_vector(solution);
     op.initialize_vector(last_good);
     scene.initial->set_time(0.);
     op.project(*scene.initial, solution);
-    limiter.apply(solution);
+    limiter.apply(solution, 0.);
+    last_good = solution;
 
     RunResult result;
     result.n_dofs  = dof_handler.n_dofs();
@@ -296,14 +303,17 @@ namespace granular_dg
         header.push_back("troubled_cells");
         if (scene.exact)
           header.push_back("l2_error");
+        for (const auto &n : hooks.timeseries_names())
+          header.push_back(n);
         timeseries.open(params.directory + "/timeseries.csv", header);
       }
 
     double        t = 0., dt = 0.;
     unsigned long step = 0;
     unsigned int  troubled = 0;
-    auto energy = [&](const Tensor<1, Physics::n_components> &U) {
-      return scene.physics.energy(U);
+    auto energy = [&](const Tensor<1, Physics::n_components> &U,
+                      const typename dg::DGOperator<dim, Physics>::template Coefficients<double> &a) {
+      return scene.physics.energy(U, a);
     };
     auto l2_error = [&](const dg::VectorType &u) {
       scene.exact->set_time(t);
@@ -328,12 +338,15 @@ namespace granular_dg
       row.push_back(Utilities::MPI::sum(troubled, comm));
       if (scene.exact)
         row.push_back(l2_error(solution));
+      for (const double v : hooks.timeseries_values(solution, t))
+        row.push_back(v);
       if (root)
         timeseries.row(row);
     };
 
-    auto post_stage = [&](dg::VectorType &u, const double stage_time, double) {
-      troubled = limiter.apply(u);
+    auto post_stage = [&](dg::VectorType &u, const double stage_time, const double weight) {
+      hooks.post_stage(u, stage_time, weight);
+      troubled = limiter.apply(u, stage_time);
       const auto report = op.check_admissibility(u);
       if (!report.ok)
         throw internal::Inadmissible{stage_time, report};
@@ -359,11 +372,13 @@ namespace granular_dg
         }
         while (next_output < output_times.size())
           {
-            const double speed = op.max_speed_over_h(solution);
+            last_good = solution;
+            const double speed =
+              op.max_speed_over_h(solution, scene.min_wave_speed);
             dt = dt_factor * params.cfl / speed;
             if (!(std::isfinite(dt) && dt > 0))
-              throw RunError("time step is " + format_number(dt) + " at t = " +
-                             format_number(t) + " (max wave speed/h = " +
+              throw RunError("time step is " + format_number(dt) + " at " + scene.time_name +
+                             " = " + format_number(t) + " (max wave speed/h = " +
                              format_number(speed) + ")");
             bool lands = false;
             if (t + dt >= output_times[next_output] * (1 - 1e-14))
@@ -371,7 +386,6 @@ namespace granular_dg
                 dt    = output_times[next_output] - t;
                 lands = true;
               }
-            last_good = solution;
             {
               TimerOutput::Scope scope(timer, "time stepping");
               Timer              step_timer;
@@ -380,6 +394,7 @@ namespace granular_dg
             }
             t = lands ? output_times[next_output] : t + dt;
             ++step;
+            hooks.end_of_step(solution, t, dt, step);
             if (lands)
               {
                 record();
@@ -394,7 +409,8 @@ namespace granular_dg
         if (failure.initial)
           msg << "inadmissible initial state at x = (";
         else
-          msg << "inadmissible state at t = " << format_number(failure.time)
+          msg << "inadmissible state at " << scene.time_name << " = "
+              << format_number(failure.time)
               << " (step " << step + 1 << "), x = (";
         for (int d = 0; d < dim; ++d)
           msg << (d ? ", " : "") << format_number(failure.report.position[d]);
@@ -410,12 +426,14 @@ namespace granular_dg
           {
             solution = last_good;
             const std::string file = snapshots.write(dof_handler, mapping, solution, t);
-            msg << "; last good state (t = " << format_number(t) << ") written to "
-                << params.directory << "/" << (file.empty() ? "profile" : file);
+            msg << "; last good state (" << scene.time_name << " = " << format_number(t)
+                << ") written to " << params.directory << "/"
+                << (file.empty() ? "profile" : file);
           }
         result.n_steps     = step;
         result.final_time  = t;
         result.wall_time_s = wall_timer.wall_time();
+        hooks.finish(solution, t, result.diagnostics, params.directory, write_files);
         if (write_files)
           write_summary(params.directory, scene.scene, dim, degree, result);
         timer_storage.reset();
@@ -426,9 +444,10 @@ namespace granular_dg
         result.status     = std::string("failed: ") + e.what();
         result.n_steps    = step;
         result.final_time = t;
+        solution = last_good;
+        hooks.finish(solution, t, result.diagnostics, params.directory, write_files);
         if (write_files)
           {
-            solution = last_good;
             snapshots.write(dof_handler, mapping, solution, t);
             write_summary(params.directory, scene.scene, dim, degree, result);
           }
@@ -440,13 +459,14 @@ namespace granular_dg
     result.final_time  = t;
     result.time_loop_s = loop_time;
     result.dof_updates_per_s =
-      loop_time > 0 ? double(result.n_dofs) * dg::SSPRK3::n_stages * step / loop_time : 0;
+      loop_time > 0 ? double(result.n_dofs) * dg::SSPRK3<>::n_stages * step / loop_time : 0;
     if (scene.exact)
       result.l2_error = l2_error(solution);
     const auto integrals = op.integrals(solution);
     for (unsigned int c = 0; c < names.size(); ++c)
       result.diagnostics.add("integral_" + names[c], integrals[c]);
     result.diagnostics.add("energy", op.integrate(solution, energy));
+    hooks.finish(solution, t, result.diagnostics, params.directory, write_files);
     result.wall_time_s = wall_timer.wall_time();
 
     if (write_files)

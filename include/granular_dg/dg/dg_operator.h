@@ -29,8 +29,12 @@ namespace granular_dg::dg
   /**
    * Physics-free explicit DG operator on MatrixFree (after deal.II step-67):
    * dst = M^{-1} ( (F(U), grad v) - <F* . n, v> + (S(U), v) ) for a Physics
-   * policy providing n_components, flux(), max_wave_speed(),
-   * numerical_flux(type, U_m, U_p, n) and boundary_state(kind, U_m, n, g).
+   * policy (the contract is in doc/engine.md): n_components, flux(),
+   * max_wave_speed(), numerical_flux(type, U_m, U_p, n, a_m, a_p),
+   * boundary_state(kind, U_m, n, g, a) and optionally source(). Every call
+   * gets the per-cell coefficients a (Physics::coefficients(material_id),
+   * e.g. density and modulus of a layer), stored per cell batch and lane and
+   * per face batch side, so lanes of one batch may hold different materials.
    * The polynomial degree is a run-time value (FEEvaluation degree -1), so one
    * instantiation per (dim, Physics) serves degrees 0-4.
    *
@@ -45,8 +49,11 @@ namespace granular_dg::dg
   public:
     static constexpr unsigned int n_components = Physics::n_components;
     using Number = double;
+    static constexpr unsigned int n_coefficients = Physics::n_coefficients;
     template <typename T>
     using State = Tensor<1, n_components, T>;
+    template <typename T>
+    using Coefficients = std::array<T, n_coefficients>;
 
     DGOperator(const Physics &physics, NumericalFlux flux, BoundaryMap<dim> bc);
 
@@ -64,25 +71,27 @@ namespace granular_dg::dg
     void
     project(const Function<dim> &function, VectorType &dst) const;
 
-    /// max over quadrature points of lambda(U) * sum_d |row_d(J^{-1})|; the
-    /// stable step is CFL / this value.
+    /// max over quadrature points of max(lambda(U), min_speed) *
+    /// sum_d |row_d(J^{-1})|; the stable step is CFL / this value.
     double
-    max_speed_over_h(const VectorType &solution) const;
+    max_speed_over_h(const VectorType &solution, double min_speed = 0.) const;
 
     /// Integral of every component over the domain.
     std::array<double, n_components>
     integrals(const VectorType &solution) const;
 
-    /// Integral of a pointwise scalar functional of the state (e.g. energy).
+    /// Integral of a pointwise scalar functional of the state and the
+    /// cell's coefficients (e.g. the energy density).
     double
-    integrate(const VectorType                                     &solution,
-              const std::function<double(const State<double> &)> &density) const;
+    integrate(const VectorType &solution,
+              const std::function<double(const State<double> &,
+                                         const Coefficients<double> &)> &density) const;
 
     /// L1, L2 and Linf norms of (solution - exact) for each component.
     std::array<std::array<double, 3>, n_components>
     errors(const VectorType &solution, const Function<dim> &exact) const;
 
-    /// Check every quadrature point (and face point) against the Physics'
+    /// Check every quadrature point against the Physics'
     /// admissibility_violation(); the first failure is reported.
     AdmissibilityReport
     check_admissibility(const VectorType &solution) const;
@@ -99,8 +108,23 @@ namespace granular_dg::dg
       return phys;
     }
 
+    /// The coefficients of lane v of cell batch `cell`.
+    Coefficients<double>
+    lane_coefficients(const unsigned int cell, const unsigned int v) const
+    {
+      Coefficients<double> a;
+      for (unsigned int i = 0; i < n_coefficients; ++i)
+        a[i] = cell_coefficients[cell][i][v];
+      return a;
+    }
+
   private:
     using VA = VectorizedArray<Number>;
+
+    /// The coefficients of the cells behind the lanes of a batch, packed.
+    template <typename CellOfLane>
+    Coefficients<VA>
+    pack_coefficients(const unsigned int n_lanes, const CellOfLane &cell_of_lane) const;
 
     void
     local_apply_cell(const MatrixFree<dim, Number>               &data,
@@ -123,6 +147,9 @@ namespace granular_dg::dg
     BoundaryMap<dim>        boundary;
     MatrixFree<dim, Number> data;
     VectorType              inverse_mass_diagonal;
-    mutable double          time = 0.;
+    /// per cell batch; per face batch, interior (m) and exterior (p) side
+    std::vector<Coefficients<VA>> cell_coefficients, face_coefficients_m,
+      face_coefficients_p;
+    mutable double time = 0.;
   };
 } // namespace granular_dg::dg

@@ -94,6 +94,28 @@ namespace granular_dg::dg
     const std::vector<const AffineConstraints<double> *> constraint_list = {&constraints};
     data.reinit(mapping, dof_handlers, constraint_list, quadratures, additional_data);
 
+    // per-cell coefficients from the material ids, packed per batch
+    cell_coefficients.resize(data.n_cell_batches());
+    for (unsigned int cell = 0; cell < data.n_cell_batches(); ++cell)
+      cell_coefficients[cell] =
+        pack_coefficients(data.n_active_entries_per_cell_batch(cell), [&](const unsigned int v) {
+          return data.get_cell_iterator(cell, v);
+        });
+    const unsigned int n_faces = data.n_inner_face_batches() + data.n_boundary_face_batches();
+    face_coefficients_m.resize(n_faces);
+    face_coefficients_p.resize(data.n_inner_face_batches());
+    for (unsigned int face = 0; face < n_faces; ++face)
+      {
+        const unsigned int lanes = data.n_active_entries_per_face_batch(face);
+        face_coefficients_m[face] = pack_coefficients(lanes, [&](const unsigned int v) {
+          return data.get_face_iterator(face, v, true).first;
+        });
+        if (face < data.n_inner_face_batches())
+          face_coefficients_p[face] = pack_coefficients(lanes, [&](const unsigned int v) {
+            return data.get_face_iterator(face, v, false).first;
+          });
+      }
+
     // FE_DGQLegendre is orthonormal on the unit cell, so on affine cells the
     // mass matrix is |K| times the identity: its inverse is a diagonal vector
     data.initialize_dof_vector(inverse_mass_diagonal);
@@ -111,6 +133,29 @@ namespace granular_dg::dg
           phi.begin_dof_values()[i] = VA(1.) / volume;
         phi.set_dof_values(inverse_mass_diagonal);
       }
+  }
+
+  template <int dim, typename Physics>
+  template <typename CellOfLane>
+  typename DGOperator<dim, Physics>::template Coefficients<VectorizedArray<double>>
+  DGOperator<dim, Physics>::pack_coefficients(const unsigned int n_lanes,
+                                              const CellOfLane  &cell_of_lane) const
+  {
+    Coefficients<VA> packed;
+    if constexpr (n_coefficients > 0)
+      {
+        for (auto &a : packed)
+          a = 0.;
+        for (unsigned int v = 0; v < VA::size(); ++v)
+          {
+            // unused lanes repeat lane 0, so that they hold valid data
+            const auto a = phys.coefficients(cell_of_lane(v < n_lanes ? v : 0)->material_id());
+            for (unsigned int i = 0; i < n_coefficients; ++i)
+              packed[i][v] = a[i];
+
+          }
+      }
+    return packed;
   }
 
   template <int dim, typename Physics>
@@ -133,13 +178,14 @@ namespace granular_dg::dg
       {
         phi.reinit(cell);
         phi.gather_evaluate(src, EvaluationFlags::values);
+        const Coefficients<VA> &a = cell_coefficients[cell];
         for (unsigned int q = 0; q < phi.n_q_points; ++q)
           {
             const auto U = internal::get_state<n_components, VA>(phi, q);
-            internal::submit_flux<n_components, dim, VA>(phi, phys.flux(U), q);
+            internal::submit_flux<n_components, dim, VA>(phi, phys.flux(U, a), q);
             if constexpr (Physics::has_source_term)
               internal::submit_state<n_components, VA>(
-                phi, phys.source(U, phi.quadrature_point(q), time), q);
+                phi, phys.source(U, phi.quadrature_point(q), time, a), q);
           }
         if constexpr (Physics::has_source_term)
           phi.integrate_scatter(EvaluationFlags::values |
@@ -166,13 +212,17 @@ namespace granular_dg::dg
         phi_m.gather_evaluate(src, EvaluationFlags::values);
         phi_p.reinit(face);
         phi_p.gather_evaluate(src, EvaluationFlags::values);
+        const Coefficients<VA> &a_m = face_coefficients_m[face];
+        const Coefficients<VA> &a_p = face_coefficients_p[face];
         for (unsigned int q = 0; q < phi_m.n_q_points; ++q)
           {
             const auto F = phys.numerical_flux(
               flux_type,
               internal::get_state<n_components, VA>(phi_m, q),
               internal::get_state<n_components, VA>(phi_p, q),
-              phi_m.get_normal_vector(q));
+              phi_m.get_normal_vector(q),
+              a_m,
+              a_p);
             internal::submit_state<n_components, VA>(phi_m, -F, q);
             internal::submit_state<n_components, VA>(phi_p, F, q);
           }
@@ -201,6 +251,7 @@ namespace granular_dg::dg
         const BoundaryCondition<dim> &bc = bc_it->second;
         if (bc.data)
           bc.data->set_time(time);
+        const Coefficients<VA> &a = face_coefficients_m[face];
 
         for (unsigned int q = 0; q < phi.n_q_points; ++q)
           {
@@ -217,8 +268,8 @@ namespace granular_dg::dg
                       g[c][v] = bc.data->value(p, c);
                   }
               }
-            const auto U_p = phys.boundary_state(bc.kind, U_m, n, g);
-            const auto F   = phys.numerical_flux(flux_type, U_m, U_p, n);
+            const auto U_p = phys.boundary_state(bc.kind, U_m, n, g, a);
+            const auto F   = phys.numerical_flux(flux_type, U_m, U_p, n, a, a);
             internal::submit_state<n_components, VA>(phi, -F, q);
           }
         phi.integrate_scatter(EvaluationFlags::values, dst);
@@ -271,7 +322,8 @@ namespace granular_dg::dg
 
   template <int dim, typename Physics>
   double
-  DGOperator<dim, Physics>::max_speed_over_h(const VectorType &solution) const
+  DGOperator<dim, Physics>::max_speed_over_h(const VectorType &solution,
+                                             const double      min_speed) const
   {
     double                                         result = 0;
     FEEvaluation<dim, -1, 0, n_components, Number> phi(data);
@@ -292,7 +344,10 @@ namespace granular_dg::dg
                   row += inv_jac[d][e] * inv_jac[d][e];
                 sum_inv_h += std::sqrt(row);
               }
-            local = std::max(local, phys.max_wave_speed(U) * sum_inv_h);
+            local = std::max(local,
+                             std::max(phys.max_wave_speed(U, cell_coefficients[cell]),
+                                      VA(min_speed)) *
+                               sum_inv_h);
           }
         for (unsigned int v = 0; v < data.n_active_entries_per_cell_batch(cell); ++v)
           result = std::max(result, local[v]);
@@ -327,8 +382,9 @@ namespace granular_dg::dg
   template <int dim, typename Physics>
   double
   DGOperator<dim, Physics>::integrate(
-    const VectorType                                     &solution,
-    const std::function<double(const State<double> &)> &density) const
+    const VectorType &solution,
+    const std::function<double(const State<double> &, const Coefficients<double> &)>
+      &density) const
   {
     double                                         sum = 0;
     FEEvaluation<dim, -1, 0, n_components, Number> phi(data);
@@ -345,7 +401,7 @@ namespace granular_dg::dg
                 State<double> u;
                 for (unsigned int c = 0; c < n_components; ++c)
                   u[c] = U[c][v];
-                sum += density(u) * JxW[v];
+                sum += density(u, lane_coefficients(cell, v)) * JxW[v];
               }
           }
       }
@@ -408,7 +464,8 @@ namespace granular_dg::dg
                 State<double> u;
                 for (unsigned int c = 0; c < n_components; ++c)
                   u[c] = U[c][v];
-                std::string why = phys.admissibility_violation(u);
+                std::string why =
+                  phys.admissibility_violation(u, lane_coefficients(cell, v));
                 if (!why.empty())
                   {
                     report.ok = false;

@@ -1,11 +1,12 @@
 #pragma once
 
-#include <deal.II/base/polynomial.h>
 #include <deal.II/base/tensor.h>
 #include <deal.II/dofs/dof_handler.h>
 #include <deal.II/lac/la_parallel_vector.h>
 
-#include <cmath>
+#include <granular_dg/dg/boundary.h>
+#include <granular_dg/dg/modal_layout.h>
+
 #include <vector>
 
 namespace granular_dg::dg
@@ -28,10 +29,15 @@ namespace granular_dg::dg
    * replaced by the limited linear slope per direction. Cell averages (and so
    * conservation) are never touched. In characteristic mode the jumps are
    * transformed with the left eigenvectors of the flux Jacobian in direction
-   * d at the cell average, limited field by field, and transformed back.
+   * d at the cell average (with the cell's coefficients), limited field by
+   * field, and transformed back.
    *
-   * Works on the vector's local storage through index tables built once; the
-   * neighbours' averages of ghost cells are read from ghost entries.
+   * At a boundary face the neighbour average is the exterior state the
+   * physics builds from the cell average (boundary_state() with the data at
+   * the face centre, e.g. the mirror state of a symmetry line); at an outflow
+   * boundary, whose exterior state is the interior one, the missing
+   * difference is replaced by the one on the other side instead, so that the
+   * boundary cell keeps its slope.
    */
   template <int dim, typename Physics>
   class ModalLimiter
@@ -40,19 +46,21 @@ namespace granular_dg::dg
     static constexpr unsigned int n_components = Physics::n_components;
     using VectorType = LinearAlgebra::distributed::Vector<double>;
 
-    ModalLimiter(const Physics &physics, LimiterType type, double tvb_M)
+    ModalLimiter(const Physics &physics, LimiterType type, double tvb_M,
+                 BoundaryMap<dim> boundary = {})
       : physics(physics)
       , type(type)
       , M(tvb_M)
+      , boundary(std::move(boundary))
     {}
 
     void
     reinit(const DoFHandler<dim> &dof_handler);
 
-    /// Limit in place; returns the number of troubled (modified) cells on this
-    /// rank.
+    /// Limit in place at time t (for boundary data); returns the number of
+    /// troubled (modified) cells on this rank.
     unsigned int
-    apply(VectorType &solution) const;
+    apply(VectorType &solution, double t = 0.) const;
 
     /// Troubled flags of the last apply(), one per locally owned active cell
     /// in the order of dof_handler.active_cell_iterators().
@@ -68,24 +76,18 @@ namespace granular_dg::dg
       return type;
     }
 
-  private:
-    const Physics physics;
-    LimiterType   type;
-    double        M;
+    const ModalLayout<dim> &
+    layout() const
+    {
+      return cells;
+    }
 
-    unsigned int n_modes_1d = 1;
-    /// local vector index of (cell, component, mode) = dof_index[(cell*n_comp+c)*n_modes + mode]
-    std::vector<unsigned int> dof_index;
-    /// neighbour cell (index into the owned+ghost table) per (cell, face), or -1
-    std::vector<int>          neighbor;
-    std::vector<double>       cell_h; // per owned cell, per direction
-    unsigned int              n_owned = 0;
-    unsigned int              n_modes = 1;
-    /// L_k(1) and L_k(0) of the orthonormal Legendre polynomials, L_0
-    std::vector<double>       value_at_1, value_at_0;
-    double                    L0 = 1.;
-    /// mode index of the 1D degree-k mode in direction d: k * stride[d]
-    std::array<unsigned int, dim> stride;
+  private:
+    const Physics    physics;
+    LimiterType      type;
+    double           M;
+    BoundaryMap<dim> boundary;
+    ModalLayout<dim> cells;
 
     mutable std::vector<unsigned char> troubled;
   };

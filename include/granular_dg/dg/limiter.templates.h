@@ -1,10 +1,8 @@
 #pragma once
 
-#include <deal.II/fe/fe.h>
-
 #include <granular_dg/dg/limiter.h>
 
-#include <map>
+#include <cmath>
 
 namespace granular_dg::dg
 {
@@ -34,90 +32,15 @@ namespace granular_dg::dg
   void
   ModalLimiter<dim, Physics>::reinit(const DoFHandler<dim> &dof_handler)
   {
-    const FiniteElement<dim> &fe = dof_handler.get_fe();
-    const unsigned int        p  = fe.degree;
-    n_modes_1d                   = p + 1;
-    n_modes                      = Utilities::pow(n_modes_1d, dim);
-    for (int d = 0; d < dim; ++d)
-      stride[d] = Utilities::pow(n_modes_1d, d);
-
-    value_at_1.resize(n_modes_1d);
-    value_at_0.resize(n_modes_1d);
-    for (unsigned int k = 0; k < n_modes_1d; ++k)
-      {
-        Polynomials::Legendre L(k);
-        value_at_1[k] = L.value(1.);
-        value_at_0[k] = L.value(0.);
-      }
-    L0 = value_at_1[0];
-
-    // system dof -> (component, Legendre mode)
-    std::vector<std::pair<unsigned int, unsigned int>> comp_mode(fe.n_dofs_per_cell());
-    for (unsigned int i = 0; i < fe.n_dofs_per_cell(); ++i)
-      comp_mode[i] = fe.system_to_component_index(i);
-
-    std::map<typename DoFHandler<dim>::cell_iterator, int> cell_number;
-    std::vector<typename DoFHandler<dim>::active_cell_iterator> cells;
-    for (const auto &cell : dof_handler.active_cell_iterators())
-      if (cell->is_locally_owned())
-        {
-          cell_number[cell] = cells.size();
-          cells.push_back(cell);
-        }
-    n_owned = cells.size();
-    // ghost (and artificial-free) neighbours get numbers after the owned ones
-    for (unsigned int i = 0; i < n_owned; ++i)
-      for (const unsigned int f : cells[i]->face_indices())
-        {
-          typename DoFHandler<dim>::cell_iterator nb;
-          if (cells[i]->has_periodic_neighbor(f))
-            nb = cells[i]->periodic_neighbor(f);
-          else if (!cells[i]->at_boundary(f))
-            nb = cells[i]->neighbor(f);
-          else
-            continue;
-          AssertThrow(nb->is_active(),
-                      ExcMessage("the limiter needs a conforming mesh"));
-          if (cell_number.find(nb) == cell_number.end())
-            {
-              cell_number[nb] = cells.size();
-              cells.push_back(typename DoFHandler<dim>::active_cell_iterator(nb));
-            }
-        }
-
-    troubled.assign(n_owned, 0);
-    cell_h.resize(n_owned * dim);
-    neighbor.assign(n_owned * 2 * dim, -1);
-    dof_index.resize(cells.size() * n_components * n_modes);
-    std::vector<types::global_dof_index> indices(fe.n_dofs_per_cell());
-    for (unsigned int i = 0; i < cells.size(); ++i)
-      {
-        cells[i]->get_dof_indices(indices);
-        for (unsigned int j = 0; j < indices.size(); ++j)
-          dof_index[(i * n_components + comp_mode[j].first) * n_modes +
-                    comp_mode[j].second] = indices[j];
-        if (i >= n_owned)
-          continue;
-        for (int d = 0; d < dim; ++d)
-          cell_h[i * dim + d] = cells[i]->extent_in_direction(d);
-        for (const unsigned int f : cells[i]->face_indices())
-          {
-            typename DoFHandler<dim>::cell_iterator nb;
-            if (cells[i]->has_periodic_neighbor(f))
-              nb = cells[i]->periodic_neighbor(f);
-            else if (!cells[i]->at_boundary(f))
-              nb = cells[i]->neighbor(f);
-            else
-              continue;
-            neighbor[i * 2 * dim + f] = cell_number[nb];
-          }
-      }
+    cells.reinit(dof_handler);
+    troubled.assign(cells.n_owned(), 0);
   }
 
   template <int dim, typename Physics>
   unsigned int
-  ModalLimiter<dim, Physics>::apply(VectorType &u) const
+  ModalLimiter<dim, Physics>::apply(VectorType &u, const double t) const
   {
+    const unsigned int n_modes_1d = cells.degree() + 1;
     if (type == LimiterType::none || n_modes_1d == 1)
       return 0;
 
@@ -125,62 +48,92 @@ namespace granular_dg::dg
     if (!had_ghosts)
       u.update_ghost_values();
 
-    auto value = [&](const unsigned int cell, const unsigned int c, const unsigned int mode) -> double & {
-      return u(dof_index[(cell * n_components + c) * n_modes + mode]);
+    auto value = [&](const unsigned int cell, const unsigned int c,
+                     const unsigned int mode) -> double & {
+      return u(cells.index(cell, c, mode));
     };
+    using State = Tensor<1, n_components>;
+    auto average = [&](const unsigned int cell) {
+      State avg;
+      for (unsigned int c = 0; c < n_components; ++c)
+        avg[c] = value(cell, c, 0);
+      return avg;
+    };
+    for (auto &b : boundary)
+      if (b.second.data)
+        b.second.data->set_time(t);
 
     unsigned int n_troubled = 0;
-    using State = Tensor<1, n_components>;
-    for (unsigned int i = 0; i < n_owned; ++i)
+    for (unsigned int i = 0; i < cells.n_owned(); ++i)
       {
-        State avg;
-        for (unsigned int c = 0; c < n_components; ++c)
-          avg[c] = value(i, c, 0) * L0;
+        const State avg = average(i);
+        const auto  a   = physics.coefficients(cells.cell(i)->material_id());
+
+        // the neighbour average across face f; false at an outflow boundary
+        auto neighbor_average = [&](const unsigned int f, State &result) {
+          const int nb = cells.neighbor(i, f);
+          if (nb >= 0)
+            {
+              result = average(nb);
+              return true;
+            }
+          const auto bc = boundary.find(cells.boundary_id(i, f));
+          if (bc == boundary.end() || bc->second.kind == BoundaryKind::outflow)
+            return false;
+          Tensor<1, dim> n;
+          n[f / 2] = (f % 2 == 0) ? -1. : 1.;
+          State g;
+          if (bc->second.data)
+            {
+              const Point<dim> x = cells.cell(i)->face(f)->center();
+              for (unsigned int c = 0; c < n_components; ++c)
+                g[c] = bc->second.data->value(x, c);
+            }
+          result = physics.boundary_state(bc->second.kind, avg, n, g, a);
+          return true;
+        };
 
         // per direction: jumps to the faces and limited slopes, in the
         // variables the limiter works on (components or characteristic fields)
-        std::array<State, dim> new_slope;
-        bool                   is_troubled = false;
+        std::array<State, dim>                   new_slope;
+        bool                                     is_troubled = false;
         std::array<Tensor<2, n_components>, dim> R;
         for (int d = 0; d < dim; ++d)
           {
-            const int nb_m = neighbor[i * 2 * dim + 2 * d];
-            const int nb_p = neighbor[i * 2 * dim + 2 * d + 1];
-            State     avg_m = avg, avg_p = avg, jump_p, jump_m, slope;
+            const unsigned int stride = cells.stride(d);
+            State              avg_m, avg_p, jump_p, jump_m, slope;
+            const bool         has_m = neighbor_average(2 * d, avg_m);
+            const bool         has_p = neighbor_average(2 * d + 1, avg_p);
             for (unsigned int c = 0; c < n_components; ++c)
               {
-                if (nb_m >= 0)
-                  avg_m[c] = value(nb_m, c, 0) * L0;
-                if (nb_p >= 0)
-                  avg_p[c] = value(nb_p, c, 0) * L0;
                 for (unsigned int k = 1; k < n_modes_1d; ++k)
                   {
-                    const double a = value(i, c, k * stride[d]);
-                    jump_p[c] += a * value_at_1[k];
-                    jump_m[c] -= a * value_at_0[k];
+                    const double mode = value(i, c, k * stride);
+                    jump_p[c] += mode * cells.value_at_1(k);
+                    jump_m[c] -= mode * cells.value_at_0(k);
                   }
-                slope[c] = value(i, c, stride[d]) * value_at_1[1];
+                slope[c] = value(i, c, stride) * cells.value_at_1(1);
               }
-            State dp = avg_p - avg, dm = avg - avg_m;
+            State dp = has_p ? avg_p - avg : State(), dm = has_m ? avg - avg_m : State();
             if (type == LimiterType::characteristic)
               {
                 Tensor<1, dim> n;
                 n[d] = 1.;
                 Tensor<2, n_components> L;
-                physics.eigenvectors(avg, n, L, R[d]);
+                physics.eigenvectors(avg, n, a, L, R[d]);
                 jump_p = L * jump_p;
                 jump_m = L * jump_m;
                 slope  = L * slope;
                 dp     = L * dp;
                 dm     = L * dm;
               }
-            const double h   = cell_h[i * dim + d];
+            const double h   = cells.extent(i, d);
             const double Mh2 = M * h * h;
             for (unsigned int c = 0; c < n_components; ++c)
               {
-                // at a physical boundary the missing difference does not limit
-                const double dpc = nb_p >= 0 ? dp[c] : dm[c];
-                const double dmc = nb_m >= 0 ? dm[c] : dp[c];
+                // at an outflow boundary the missing difference does not limit
+                const double dpc = has_p ? dp[c] : dm[c];
+                const double dmc = has_m ? dm[c] : dp[c];
                 if (internal::minmod_tvb(jump_p[c], dpc, dmc, Mh2) != jump_p[c] ||
                     internal::minmod_tvb(jump_m[c], dpc, dmc, Mh2) != jump_m[c])
                   is_troubled = true;
@@ -197,14 +150,14 @@ namespace granular_dg::dg
             if (type == LimiterType::characteristic)
               s = R[d] * s;
             for (unsigned int c = 0; c < n_components; ++c)
-              value(i, c, stride[d]) = s[c] / value_at_1[1];
+              value(i, c, cells.stride(d)) = s[c] / cells.value_at_1(1);
           }
         for (unsigned int c = 0; c < n_components; ++c)
-          for (unsigned int m = 1; m < n_modes; ++m)
+          for (unsigned int m = 1; m < cells.n_modes(); ++m)
             {
               bool linear = false;
               for (int d = 0; d < dim; ++d)
-                linear |= (m == stride[d]);
+                linear |= (m == cells.stride(d));
               if (!linear)
                 value(i, c, m) = 0.;
             }

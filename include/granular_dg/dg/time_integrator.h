@@ -18,25 +18,29 @@ namespace granular_dg::dg
    * check) gets the new stage value, its time and the effective weight of the
    * explicit update in it: dt, dt/4 and 2 dt/3 — a stiff term treated
    * implicitly in the hook must carry exactly this weight to be consistent.
+   *
+   * Vector needs reinit(const Vector &), equ(a, x), add(a, x) and
+   * sadd(s, a, x) (deal.II's vectors have them; so can a network state).
    */
+  template <typename Vector = VectorType>
   class SSPRK3
   {
   public:
-    using PostStageHook =
-      std::function<void(VectorType &u, double stage_time, double weight)>;
+    using PostStageHook = std::function<void(Vector &u, double stage_time, double weight)>;
 
     template <typename Operator>
     void
     step(const Operator      &op,
-         VectorType          &u,
+         Vector              &u,
          const double         t,
          const double         dt,
          const PostStageHook &post_stage)
     {
-      if (k.size() != u.size())
+      if (!initialized)
         {
           k.reinit(u);
           u1.reinit(u);
+          initialized = true;
         }
       op.apply(t, u, k);
       u1.equ(1., u);
@@ -57,6 +61,7 @@ namespace granular_dg::dg
     static constexpr unsigned int n_stages = 3;
 
   private:
-    VectorType k, u1;
+    bool   initialized = false;
+    Vector k, u1;
   };
 } // namespace granular_dg::dg

@@ -219,6 +219,10 @@ namespace granular_dg::elasticity
                                                     true);
         }
 
+      // one material (deal.II's 1D generator colours cells with material ids)
+      for (const auto &cell : scene.triangulation->active_cell_iterators())
+        cell->set_material_id(0);
+
       prm.enter_subsection("Boundary conditions");
       std::vector<Side> sides;
       for (unsigned int b = 0; b < 2 * dim; ++b)

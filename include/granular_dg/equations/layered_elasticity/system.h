@@ -21,6 +21,10 @@
  *
  * Admissible set: finite states with sigma'(eps) > 0 (the system is
  * hyperbolic); for law (1.4) with beta > 0 that is eps > -1/(2 beta K).
+ *
+ * The material is per cell: coefficients a = (rho, K, beta) from the cell's
+ * material_id (layers of a layered medium), so that every function below
+ * takes the coefficients of the cell (or of each side of a face).
  */
 
 #include <deal.II/base/tensor.h>
@@ -53,23 +57,56 @@ namespace granular_dg::elasticity
     double beta = 0.;
   };
 
+  /// Positions of the material data in the coefficient array.
+  enum Coefficient : unsigned int
+  {
+    density = 0,
+    modulus = 1,
+    nonlinearity = 2
+  };
+
   template <int dim>
   class System
   {
   public:
-    static constexpr unsigned int n_components = dim + 1;
-    static constexpr const char  *name         = "nonlinear elasticity";
+    static constexpr unsigned int n_components    = dim + 1;
+    static constexpr unsigned int n_coefficients  = 3;
+    static constexpr const char  *name            = "nonlinear elasticity";
     static constexpr bool         has_source_term = false;
 
     template <typename Number>
     using State = Tensor<1, n_components, Number>;
     template <typename Number>
     using Flux = Tensor<1, n_components, Tensor<1, dim, Number>>;
+    /// (rho, K, beta) of a cell
+    template <typename Number>
+    using Coefficients = std::array<Number, n_coefficients>;
+
+    /// materials[id] is the material of the cells with material_id id.
+    System(const StressLaw law, std::vector<Material> materials)
+      : law(law)
+      , materials(std::move(materials))
+    {}
 
     System(const StressLaw law, const Material &material)
-      : law(law)
-      , mat(material)
+      : System(law, std::vector<Material>{material})
     {}
+
+    Coefficients<double>
+    coefficients(const types::material_id id) const
+    {
+      AssertThrow(id < materials.size(),
+                  ExcMessage("cell material_id " + std::to_string(id) + " has no material (" +
+                             std::to_string(materials.size()) + " defined)"));
+      const Material &m = materials[id];
+      return {{m.rho, m.K, m.beta}};
+    }
+
+    static Coefficients<double>
+    coefficients_of(const Material &m)
+    {
+      return {{m.rho, m.K, m.beta}};
+    }
 
     static std::vector<std::string>
     component_names()
@@ -94,64 +131,66 @@ namespace granular_dg::elasticity
     }
 
     std::vector<double>
-    derived(const State<double> &U) const
+    derived(const State<double> &U, const Coefficients<double> &a) const
     {
       std::vector<double> out;
       for (int d = 0; d < dim; ++d)
-        out.push_back(U[1 + d] / mat.rho);
-      out.push_back(stress(U[0]));
+        out.push_back(U[1 + d] / a[density]);
+      out.push_back(stress(U[0], a));
       return out;
     }
 
     template <typename Number>
     Number
-    stress(const Number &eps) const
+    stress(const Number &eps, const Coefficients<Number> &a) const
     {
+      const Number &K = a[modulus];
       if (law == StressLaw::quadratic)
-        return mat.K * eps + (mat.beta * mat.K * mat.K) * eps * eps;
+        return K * eps + (a[nonlinearity] * K * K) * eps * eps;
       else
-        return std::exp(mat.K * eps) - Number(1.);
+        return std::exp(K * eps) - Number(1.);
     }
 
     /// sigma'(eps)
     template <typename Number>
     Number
-    stress_derivative(const Number &eps) const
+    stress_derivative(const Number &eps, const Coefficients<Number> &a) const
     {
+      const Number &K = a[modulus];
       if (law == StressLaw::quadratic)
-        return mat.K + (2. * mat.beta * mat.K * mat.K) * eps;
+        return K + (2. * a[nonlinearity] * K * K) * eps;
       else
-        return mat.K * std::exp(mat.K * eps);
+        return K * std::exp(K * eps);
     }
 
     /// Sigma(eps) = int_0^eps sigma: the stored energy density.
     double
-    stored_energy(const double eps) const
+    stored_energy(const double eps, const Coefficients<double> &a) const
     {
+      const double K = a[modulus];
       if (law == StressLaw::quadratic)
-        return 0.5 * mat.K * eps * eps +
-               mat.beta * mat.K * mat.K * eps * eps * eps / 3.;
+        return 0.5 * K * eps * eps + a[nonlinearity] * K * K * eps * eps * eps / 3.;
       else
-        return (std::exp(mat.K * eps) - 1.) / mat.K - eps;
+        return (std::exp(K * eps) - 1.) / K - eps;
     }
 
     /// Total energy density |m|^2/(2 rho) + Sigma(eps).
     double
-    energy(const State<double> &U) const
+    energy(const State<double> &U, const Coefficients<double> &a) const
     {
       double m2 = 0;
       for (int d = 0; d < dim; ++d)
         m2 += U[1 + d] * U[1 + d];
-      return 0.5 * m2 / mat.rho + stored_energy(U[0]);
+      return 0.5 * m2 / a[density] + stored_energy(U[0], a);
     }
 
     template <typename Number>
     Flux<Number>
-    flux(const State<Number> &U) const
+    flux(const State<Number> &U, const Coefficients<Number> &a) const
     {
-      Flux<Number>  F;
-      const Number  sigma   = stress(U[0]);
-      const double  inv_rho = 1. / mat.rho;
+      Flux<Number> F;
+      const Number sigma   = stress(U[0], a);
+      const Number inv_rho = Number(1.) / a[density];
       for (int d = 0; d < dim; ++d)
         {
           F[0][d]     = -U[1 + d] * inv_rho;
@@ -165,9 +204,9 @@ namespace granular_dg::elasticity
     /// admissibility check, never a NaN here).
     template <typename Number>
     Number
-    max_wave_speed(const State<Number> &U) const
+    max_wave_speed(const State<Number> &U, const Coefficients<Number> &a) const
     {
-      Number s = stress_derivative(U[0]) * (1. / mat.rho);
+      const Number s = stress_derivative(U[0], a) / a[density];
       return std::sqrt(std::max(s, Number(0.)));
     }
 
@@ -180,8 +219,10 @@ namespace granular_dg::elasticity
     boundary_state(const dg::BoundaryKind         kind,
                    const State<Number>           &U_m,
                    const Tensor<1, dim, Number>  &normal,
-                   const State<Number>           &g) const
+                   const State<Number>           &g,
+                   const Coefficients<Number>    &a) const
     {
+      const Number &rho = a[density];
       State<Number> U_p = U_m;
       switch (kind)
         {
@@ -200,7 +241,7 @@ namespace granular_dg::elasticity
                   un_m += U_m[1 + d] * normal[d];
                   un_w += g[1 + d] * normal[d];
                 }
-              const Number dm = (2. * mat.rho) * (un_w - un_m / mat.rho);
+              const Number dm = 2. * (rho * un_w - un_m);
               for (int d = 0; d < dim; ++d)
                 U_p[1 + d] += dm * normal[d];
               break;
@@ -209,10 +250,12 @@ namespace granular_dg::elasticity
             {
               // sigma(eps_p) = 2 g - sigma(eps_m) so that the average is g;
               // solved with the linearisation at eps_m
-              const Number s_m = stress(U_m[0]);
-              U_p[0] += 2. * (g[0] - s_m) / stress_derivative(U_m[0]);
+              const Number s_m = stress(U_m[0], a);
+              U_p[0] += 2. * (g[0] - s_m) / stress_derivative(U_m[0], a);
               break;
             }
+          default:
+            AssertThrow(false, ExcMessage("elasticity has no boundary kind symmetry/custom"));
         }
       return U_p;
     }
@@ -224,19 +267,21 @@ namespace granular_dg::elasticity
     State<Number>
     impedance_flux(const State<Number>          &U_m,
                    const State<Number>          &U_p,
-                   const Tensor<1, dim, Number> &n) const
+                   const Tensor<1, dim, Number> &n,
+                   const Coefficients<Number>   &a_m,
+                   const Coefficients<Number>   &a_p) const
     {
-      const Number Z_m = mat.rho * max_wave_speed(U_m);
-      const Number Z_p = mat.rho * max_wave_speed(U_p);
+      const Number Z_m = a_m[density] * max_wave_speed(U_m, a_m);
+      const Number Z_p = a_p[density] * max_wave_speed(U_p, a_p);
       Number       un_m = 0, un_p = 0;
       for (int d = 0; d < dim; ++d)
         {
           un_m += U_m[1 + d] * n[d];
           un_p += U_p[1 + d] * n[d];
         }
-      un_m *= 1. / mat.rho;
-      un_p *= 1. / mat.rho;
-      const Number s_m = stress(U_m[0]), s_p = stress(U_p[0]);
+      un_m /= a_m[density];
+      un_p /= a_p[density];
+      const Number s_m = stress(U_m[0], a_m), s_p = stress(U_p[0], a_p);
       const Number inv = Number(1.) / (Z_m + Z_p);
       const Number u_star = (Z_m * un_m + Z_p * un_p + s_p - s_m) * inv;
       const Number s_star = (Z_p * s_m + Z_m * s_p + Z_m * Z_p * (un_p - un_m)) * inv;
@@ -252,22 +297,25 @@ namespace granular_dg::elasticity
     numerical_flux(const dg::NumericalFlux         type,
                    const State<Number>            &U_m,
                    const State<Number>            &U_p,
-                   const Tensor<1, dim, Number>   &n) const
+                   const Tensor<1, dim, Number>   &n,
+                   const Coefficients<Number>     &a_m,
+                   const Coefficients<Number>     &a_p) const
     {
       if (type == dg::NumericalFlux::impedance)
-        return impedance_flux(U_m, U_p, n);
-      return dg::local_lax_friedrichs(*this, U_m, U_p, n);
+        return impedance_flux(U_m, U_p, n, a_m, a_p);
+      return dg::local_lax_friedrichs(*this, U_m, U_p, n, a_m, a_p);
     }
 
     /// Left (rows of L) and right (columns of R) eigenvectors of the flux
     /// Jacobian in direction n at U; L R = I. Order: -c, 0.., +c.
     void
-    eigenvectors(const State<double>     &U,
-                 const Tensor<1, dim>    &n,
-                 Tensor<2, n_components> &L,
-                 Tensor<2, n_components> &R) const
+    eigenvectors(const State<double>        &U,
+                 const Tensor<1, dim>       &n,
+                 const Coefficients<double> &a,
+                 Tensor<2, n_components>    &L,
+                 Tensor<2, n_components>    &R) const
     {
-      const double Z = mat.rho * max_wave_speed(U);
+      const double Z = a[density] * max_wave_speed(U, a);
       L = 0;
       R = 0;
       // lambda = -c: r = (1, Z n), l = (1/2, n/(2Z))
@@ -292,28 +340,28 @@ namespace granular_dg::elasticity
 
     /// Empty string when U is admissible, otherwise the failed test.
     std::string
-    admissibility_violation(const State<double> &U) const
+    admissibility_violation(const State<double> &U, const Coefficients<double> &a) const
     {
       for (unsigned int c = 0; c < n_components; ++c)
         if (!std::isfinite(U[c]))
           return "state is not finite";
-      const double sp = stress_derivative(U[0]);
+      const double sp = stress_derivative(U[0], a);
       if (!(sp > 0.))
         return "loss of hyperbolicity: sigma'(eps) = " + std::to_string(sp) +
                " <= 0";
-      if (!std::isfinite(stress(U[0])))
+      if (!std::isfinite(stress(U[0], a)))
         return "stress is not finite";
       return "";
     }
 
-    const Material &
-    material() const
+    const std::vector<Material> &
+    material_table() const
     {
-      return mat;
+      return materials;
     }
 
   private:
-    StressLaw law;
-    Material  mat;
+    StressLaw             law;
+    std::vector<Material> materials;
   };
 } // namespace granular_dg::elasticity

@@ -1,0 +1,81 @@
+#pragma once
+
+#include <deal.II/base/point.h>
+#include <deal.II/dofs/dof_handler.h>
+
+#include <array>
+#include <vector>
+
+namespace granular_dg::dg
+{
+  using namespace dealii;
+
+  /**
+   * Where the Legendre modes of FE_DGQLegendre live in a solution vector, cell
+   * by cell, and who the neighbours are: the index tables behind the modal
+   * limiter and every cell-local post-stage operation (friction projection,
+   * positivity scaling). Cells are numbered 0..n_owned()-1 for the locally
+   * owned ones in the order of active_cell_iterators(), then the ghost
+   * neighbours that some owned cell touches.
+   *
+   * Mode m of a cell is the tensor-product index m = sum_d k_d stride(d) of
+   * the 1D degrees k_d; mode 0 is the cell average (the orthonormal L_0 = 1 on
+   * the unit cell). Vector entries are addressed by global index (operator()
+   * of the distributed vector), so ghost neighbours need update_ghost_values().
+   */
+  template <int dim>
+  class ModalLayout
+  {
+  public:
+    void
+    reinit(const DoFHandler<dim> &dof_handler);
+
+    unsigned int n_owned() const { return n_owned_cells; }
+    unsigned int n_cells() const { return cells.size(); }
+    unsigned int n_components() const { return n_comp; }
+    unsigned int degree() const { return n_modes_1d - 1; }
+    unsigned int n_modes() const { return n_modes_cell; }
+    unsigned int stride(const unsigned int d) const { return strides[d]; }
+
+    /// global vector index of (cell, component, mode)
+    types::global_dof_index
+    index(const unsigned int cell, const unsigned int component, const unsigned int mode) const
+    {
+      return dof_index[(cell * n_comp + component) * n_modes_cell + mode];
+    }
+
+    /// the neighbour across face f (0..2dim-1, deal.II numbering), or -1 at a
+    /// non-periodic boundary
+    int
+    neighbor(const unsigned int cell, const unsigned int f) const
+    {
+      return neighbors[cell * 2 * dim + f];
+    }
+
+    /// boundary id of face f of an owned cell (meaningful where neighbor() < 0)
+    types::boundary_id
+    boundary_id(const unsigned int cell, const unsigned int f) const
+    {
+      return boundary_ids[cell * 2 * dim + f];
+    }
+
+    const typename DoFHandler<dim>::active_cell_iterator &
+    cell(const unsigned int c) const { return cells[c]; }
+
+    double extent(const unsigned int c, const unsigned int d) const { return extents[c * dim + d]; }
+
+    /// L_k(1) and L_k(0) of the 1D orthonormal Legendre polynomials on [0, 1]
+    double value_at_1(const unsigned int k) const { return at_1[k]; }
+    double value_at_0(const unsigned int k) const { return at_0[k]; }
+
+  private:
+    unsigned int n_comp = 1, n_modes_1d = 1, n_modes_cell = 1, n_owned_cells = 0;
+    std::array<unsigned int, dim>                               strides;
+    std::vector<typename DoFHandler<dim>::active_cell_iterator> cells;
+    std::vector<types::global_dof_index>                        dof_index;
+    std::vector<int>                                            neighbors;
+    std::vector<types::boundary_id>                             boundary_ids;
+    std::vector<double>                                         extents;
+    std::vector<double>                                         at_1, at_0;
+  };
+} // namespace granular_dg::dg

@@ -1,0 +1,102 @@
+#include <deal.II/base/polynomial.h>
+#include <deal.II/fe/fe.h>
+
+#include <granular_dg/dg/modal_layout.h>
+
+#include <cmath>
+#include <map>
+
+namespace granular_dg::dg
+{
+  template <int dim>
+  void
+  ModalLayout<dim>::reinit(const DoFHandler<dim> &dof_handler)
+  {
+    const FiniteElement<dim> &fe = dof_handler.get_fe();
+    n_comp                       = fe.n_components();
+    n_modes_1d                   = fe.degree + 1;
+    n_modes_cell                 = Utilities::pow(n_modes_1d, dim);
+    for (int d = 0; d < dim; ++d)
+      strides[d] = Utilities::pow(n_modes_1d, d);
+    AssertThrow(fe.n_dofs_per_cell() == n_comp * n_modes_cell,
+                ExcMessage("ModalLayout expects FESystem(FE_DGQLegendre(p), n)"));
+
+    at_1.resize(n_modes_1d);
+    at_0.resize(n_modes_1d);
+    for (unsigned int k = 0; k < n_modes_1d; ++k)
+      {
+        // FE_DGQLegendre's shape functions are the Legendre polynomials
+        // orthonormal on [0, 1]
+        const Polynomials::Legendre L(k);
+        at_1[k] = L.value(1.);
+        at_0[k] = L.value(0.);
+      }
+    AssertThrow(std::abs(at_1[0] - 1.) < 1e-14,
+                ExcMessage("expected the orthonormal Legendre basis with L_0 = 1"));
+
+    std::map<typename DoFHandler<dim>::cell_iterator, int> number;
+    cells.clear();
+    for (const auto &cell : dof_handler.active_cell_iterators())
+      if (cell->is_locally_owned())
+        {
+          number[cell] = cells.size();
+          cells.push_back(cell);
+        }
+    n_owned_cells = cells.size();
+
+    auto neighbor_of = [](const typename DoFHandler<dim>::active_cell_iterator &cell,
+                          const unsigned int f) {
+      typename DoFHandler<dim>::cell_iterator nb;
+      if (cell->has_periodic_neighbor(f))
+        nb = cell->periodic_neighbor(f);
+      else if (!cell->at_boundary(f))
+        nb = cell->neighbor(f);
+      return nb;
+    };
+    for (unsigned int i = 0; i < n_owned_cells; ++i)
+      for (const unsigned int f : cells[i]->face_indices())
+        {
+          const auto nb = neighbor_of(cells[i], f);
+          if (nb.state() != IteratorState::valid)
+            continue;
+          AssertThrow(nb->is_active(), ExcMessage("ModalLayout needs a conforming mesh"));
+          if (number.find(nb) == number.end())
+            {
+              number[nb] = cells.size();
+              cells.emplace_back(nb);
+            }
+        }
+
+    std::vector<std::pair<unsigned int, unsigned int>> comp_mode(fe.n_dofs_per_cell());
+    for (unsigned int i = 0; i < fe.n_dofs_per_cell(); ++i)
+      comp_mode[i] = fe.system_to_component_index(i);
+
+    neighbors.assign(n_owned_cells * 2 * dim, -1);
+    boundary_ids.assign(n_owned_cells * 2 * dim, numbers::invalid_boundary_id);
+    extents.resize(n_owned_cells * dim);
+    dof_index.resize(cells.size() * n_comp * n_modes_cell);
+    std::vector<types::global_dof_index> indices(fe.n_dofs_per_cell());
+    for (unsigned int i = 0; i < cells.size(); ++i)
+      {
+        cells[i]->get_dof_indices(indices);
+        for (unsigned int j = 0; j < indices.size(); ++j)
+          dof_index[(i * n_comp + comp_mode[j].first) * n_modes_cell + comp_mode[j].second] =
+            indices[j];
+        if (i >= n_owned_cells)
+          continue;
+        for (int d = 0; d < dim; ++d)
+          extents[i * dim + d] = cells[i]->extent_in_direction(d);
+        for (const unsigned int f : cells[i]->face_indices())
+          {
+            const auto nb = neighbor_of(cells[i], f);
+            if (nb.state() == IteratorState::valid)
+              neighbors[i * 2 * dim + f] = number[nb];
+            else
+              boundary_ids[i * 2 * dim + f] = cells[i]->face(f)->boundary_id();
+          }
+      }
+  }
+
+  template class ModalLayout<1>;
+  template class ModalLayout<2>;
+} // namespace granular_dg::dg
