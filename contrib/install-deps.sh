@@ -7,6 +7,7 @@ set -euo pipefail
 packages=(
   build-essential cmake g++ make
   libdeal.ii-dev          # deal.II 9.4.1 with MPI, p4est, Trilinos, HDF5, SUNDIALS, Boost
+  libboost-dev            # Boost.Math (Bessel, quadrature, roots), Boost.odeint
   openmpi-bin libopenmpi-dev
   numdiff                 # regression-test comparison
   paraview python3-paraview xvfb  # pvpython: a real-client test of the VTU/PVD output

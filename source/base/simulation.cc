@@ -11,7 +11,10 @@ namespace granular_dg
   {
     const EnumNames<dg::NumericalFlux> flux_names(
       {{dg::NumericalFlux::local_lax_friedrichs, "local_lax_friedrichs"},
-       {dg::NumericalFlux::impedance, "impedance"}});
+       {dg::NumericalFlux::impedance, "impedance"},
+       {dg::NumericalFlux::roe_lax_friedrichs, "roe_lax_friedrichs"},
+       {dg::NumericalFlux::upwind, "upwind"},
+       {dg::NumericalFlux::godunov, "godunov"}});
     const EnumNames<dg::LimiterType> limiter_names(
       {{dg::LimiterType::none, "none"},
        {dg::LimiterType::componentwise, "componentwise"},
@@ -45,9 +48,11 @@ namespace granular_dg
                       "volumes). Allowed: 0 to 4.");
     prm.declare_entry("numerical flux", "local_lax_friedrichs",
                       Patterns::Selection(fluxes),
-                      "Numerical flux on faces: local_lax_friedrichs (Rusanov) or the "
-                      "physics-specific one (impedance: linearised Godunov state with "
-                      "continuous velocity and stress).");
+                      "Numerical flux on faces: local_lax_friedrichs (Rusanov) or a "
+                      "physics-specific one: impedance (elasticity: linearised Godunov "
+                      "state with continuous velocity and stress), roe_lax_friedrichs "
+                      "(Lax-Friedrichs with the Roe-matrix speed), upwind "
+                      "(Engquist-Osher for scalar laws), godunov. Allowed: " + fluxes + ".");
     prm.leave_subsection();
 
     prm.enter_subsection("Time stepping");

@@ -7,14 +7,22 @@ namespace granular_dg::dg
 {
   using namespace dealii;
 
-  /// Numerical fluxes selectable in the prm. Every physics provides local
-  /// Lax-Friedrichs; `impedance` is the physics-specific slot (for
-  /// elasticity the linearised Godunov flux that keeps u.n and sigma
-  /// continuous).
+  /// Numerical fluxes selectable in the prm (Discretization/numerical
+  /// flux). Every physics provides local Lax-Friedrichs; the others are
+  /// physics-specific, and a scene's prm pattern lists only those its
+  /// physics implements:
+  ///  - impedance: elasticity's linearised Godunov flux that keeps u.n and
+  ///    sigma continuous across material interfaces;
+  ///  - roe_lax_friedrichs: Lax-Friedrichs with the speed of a Roe matrix;
+  ///  - upwind: the upwind / Engquist-Osher flux of a scalar law;
+  ///  - godunov: the exact Riemann solver's flux.
   enum class NumericalFlux
   {
     local_lax_friedrichs,
-    impedance
+    impedance,
+    roe_lax_friedrichs,
+    upwind,
+    godunov
   };
 
   /// Local Lax-Friedrichs (Rusanov): {F}.n + lambda/2 (U_m - U_p),
