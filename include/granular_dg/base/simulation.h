@@ -141,6 +141,7 @@ namespace granular_dg
     /// per component (L1, L2, Linf) against the exact solution, if any
     std::vector<std::array<double, 3>> errors;
     double                           l2_error = -1; ///< all components
+    double                           l1_error = -1; ///< sum over the components
     JsonObject                       diagnostics;
   };
 

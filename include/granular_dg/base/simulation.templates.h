@@ -302,7 +302,11 @@ namespace granular_dg
         header.push_back("energy");
         header.push_back("troubled_cells");
         if (scene.exact)
-          header.push_back("l2_error");
+          {
+            header.push_back("l2_error");
+            for (const auto &n : names)
+              header.push_back("l1_error_" + n);
+          }
         for (const auto &n : hooks.timeseries_names())
           header.push_back(n);
         timeseries.open(params.directory + "/timeseries.csv", header);
@@ -337,7 +341,11 @@ namespace granular_dg
       row.push_back(op.integrate(solution, energy));
       row.push_back(Utilities::MPI::sum(troubled, comm));
       if (scene.exact)
-        row.push_back(l2_error(solution));
+        {
+          row.push_back(l2_error(solution));
+          for (const auto &e : result.errors)
+            row.push_back(e[0]);
+        }
       for (const double v : hooks.timeseries_values(solution, t))
         row.push_back(v);
       if (root)
@@ -461,7 +469,12 @@ namespace granular_dg
     result.dof_updates_per_s =
       loop_time > 0 ? double(result.n_dofs) * dg::SSPRK3<>::n_stages * step / loop_time : 0;
     if (scene.exact)
-      result.l2_error = l2_error(solution);
+      {
+        result.l2_error = l2_error(solution);
+        result.l1_error = 0;
+        for (const auto &e : result.errors)
+          result.l1_error += e[0];
+      }
     const auto integrals = op.integrals(solution);
     for (unsigned int c = 0; c < names.size(); ++c)
       result.diagnostics.add("integral_" + names[c], integrals[c]);
@@ -495,17 +508,17 @@ namespace granular_dg
     if (root)
       {
         table.open(params.directory + "/convergence.csv",
-                   {"degree", "cells", "dofs", "h", "l2_error", "eoc", "time_steps",
-                    "wall_time_s"});
+                   {"degree", "cells", "dofs", "h", "l2_error", "eoc", "l1_error", "eoc_l1",
+                    "time_steps", "wall_time_s"});
         rates.open(params.directory + "/convergence-rates.csv",
-                   {"degree", "eoc_finest"},
-                   "L2 error rate of the two finest meshes");
+                   {"degree", "eoc_finest", "eoc_l1_finest"},
+                   "L2 and L1 error rates of the two finest meshes (all components)");
         std::cout << "  degree    cells       dofs       L2 error     EOC   steps" << std::endl;
       }
     JsonObject errors;
     for (const unsigned int p : params.convergence_degrees)
       {
-        double       e_prev = -1, h_prev = -1, eoc = NAN;
+        double       e_prev = -1, h_prev = -1, eoc = NAN, e1_prev = -1, eoc1 = NAN;
         const double exponent = std::max(1., (p + 1.) / 3.) - 1.;
         const double h0       = 1. / params.convergence_cells.front();
         std::vector<double> errs;
@@ -516,22 +529,25 @@ namespace granular_dg
             const double factor = std::pow((1. / cells) / h0, exponent);
             const auto   r      = run_simulation(scene, params, p, false, factor);
             eoc = e_prev > 0 ? std::log(e_prev / r.l2_error) / std::log(h_prev / r.h_min) : NAN;
+            eoc1 =
+              e1_prev > 0 ? std::log(e1_prev / r.l1_error) / std::log(h_prev / r.h_min) : NAN;
             if (root)
               {
-                table.row({double(p), double(cells), double(r.n_dofs), r.h_min,
-                           r.l2_error, eoc, double(r.n_steps), r.wall_time_s});
+                table.row({double(p), double(cells), double(r.n_dofs), r.h_min, r.l2_error,
+                           eoc, r.l1_error, eoc1, double(r.n_steps), r.wall_time_s});
                 std::cout << std::setw(8) << p << std::setw(9) << cells << std::setw(11)
                           << r.n_dofs << std::setw(15) << std::scientific
                           << std::setprecision(4) << r.l2_error << std::defaultfloat
                           << std::setw(8) << std::fixed << std::setprecision(2) << eoc
                           << std::defaultfloat << std::setw(8) << r.n_steps << std::endl;
               }
-            e_prev = r.l2_error;
-            h_prev = r.h_min;
+            e_prev  = r.l2_error;
+            e1_prev = r.l1_error;
+            h_prev  = r.h_min;
             errs.push_back(r.l2_error);
           }
         if (root)
-          rates.row({double(p), eoc});
+          rates.row({double(p), eoc, eoc1});
         errors.add("degree_" + std::to_string(p) + "_l2_errors", errs);
       }
     if (root)

@@ -1,0 +1,654 @@
+/**
+ * The `column` scene: a granular column with Coulomb wall friction (seed 000,
+ * system.h), a wall load u(0, t) = u_b at z = 0 and an outflow end at z = L,
+ * at rest initially. The friction inclusion is solved per cell and stage
+ * (friction.h) or, for comparison, treated explicitly (the naive variants).
+ * Diagnostics: fronts, energy, friction work, the space-time map of sgn(v), the
+ * final strain against Janssen's profile and against the stationary problem
+ * (4.1)-(4.2) with the final sgn(v); for m = 1 the exact solution
+ * (closed_form.h).
+ */
+
+#include <deal.II/base/polynomial.h>
+#include <deal.II/base/quadrature_lib.h>
+#include <deal.II/grid/grid_generator.h>
+#include <deal.II/lac/full_matrix.h>
+#include <deal.II/lac/vector.h>
+
+#include <granular_dg/base/parameters.h>
+#include <granular_dg/base/simulation.h>
+#include <granular_dg/equations/friction_column/closed_form.h>
+#include <granular_dg/equations/friction_column/friction.h>
+#include <granular_dg/equations/friction_column/system.h>
+#include <granular_dg/scenes/scenes.h>
+
+#include <cstdio>
+#include <fstream>
+#include <iostream>
+#include <limits>
+#include <optional>
+
+namespace granular_dg::column
+{
+  namespace
+  {
+    const EnumNames<FrictionTreatment> friction_names(
+      {{FrictionTreatment::projection, "projection"},
+       {FrictionTreatment::explicit_sign, "explicit_sign"},
+       {FrictionTreatment::explicit_smooth, "explicit_smooth"},
+       {FrictionTreatment::none, "none"}});
+
+    struct ColumnParameters
+    {
+      Parameters   physics;
+      double       u_b           = -1.;
+      double       length        = 40.;
+      unsigned int cells         = 1600;
+      double       sample_dt     = 0.;
+      double       threshold     = 1e-3;
+      double       probe         = 0.5;
+      bool         closed_form   = false;
+      bool         write_sgn_map = true;
+    };
+
+    /// Everything the scene measures along the way.
+    class ColumnHooks : public SceneHooks<1>
+    {
+    public:
+      ColumnHooks(const System &system, const ColumnParameters &prm, const double final_time)
+        : system(system)
+        , prm(prm)
+        , sigma_b(system.stress(prm.u_b))
+        , sample_dt(prm.sample_dt > 0 ? prm.sample_dt : final_time / 400.)
+      {}
+
+      void
+      initialize(const DoFHandler<1> &, const Mapping<1> &,
+                 const dg::ModalLayout<1> &cell_layout) override
+      {
+        layout = &cell_layout;
+        projection.emplace(system, cell_layout);
+        const unsigned int n = cell_layout.n_owned();
+        center.resize(n);
+        for (unsigned int c = 0; c < n; ++c)
+          center[c] = cell_layout.cell(c)->center()[0];
+        h = cell_layout.extent(0, 0);
+        previous_sign.assign(n, 0);
+        previous_state.assign(n, FrictionProjection::CellState::unloaded);
+        // values at the cell centre and at the left end, per mode
+        for (unsigned int k = 0; k <= cell_layout.degree(); ++k)
+          {
+            const Polynomials::Legendre L(k);
+            at_center.push_back(L.value(0.5));
+            at_left.push_back(L.value(0.));
+          }
+        const QGauss<1> q(cell_layout.degree() + 3);
+        q_weights = q.get_weights();
+        for (unsigned int i = 0; i < q.size(); ++i)
+          for (unsigned int k = 0; k <= cell_layout.degree(); ++k)
+            q_basis.push_back(Polynomials::Legendre(k).value(q.point(i)[0]));
+      }
+
+      void
+      post_stage(dg::VectorType &U, double, const double weight) override
+      {
+        if (system.parameters().friction == FrictionTreatment::projection)
+          projection->apply(U, weight);
+      }
+
+      void
+      end_of_step(const dg::VectorType &U, const double t, const double dt,
+                  const unsigned long) override
+      {
+        const auto        &state = projection->states();
+        const unsigned int n     = layout->n_owned();
+        const bool         implicit =
+          system.parameters().friction == FrictionTreatment::projection;
+        // only the disturbed region counts: ahead of the front the scheme
+        // leaves round-off-sized velocities of either sign
+        const double tol = prm.threshold * std::abs(prm.u_b);
+        for (unsigned int c = 0; c < n; ++c)
+          {
+            if (std::abs(U(layout->index(c, 0, 0))) <= tol)
+              continue;
+            const double v0   = U(layout->index(c, 1, 0));
+            const int    sign = v0 > 0 ? 1 : (v0 < 0 ? -1 : 0);
+            if (sign * previous_sign[c] < 0)
+              ++velocity_sign_flips;
+            previous_sign[c] = sign;
+            if (!implicit)
+              continue;
+            if (state[c] == FrictionProjection::CellState::stuck)
+              {
+                for (unsigned int k = 0; k < layout->n_modes(); ++k)
+                  max_stuck_velocity =
+                    std::max(max_stuck_velocity, std::abs(U(layout->index(c, 1, k))));
+                max_stuck_multiplier =
+                  std::max(max_stuck_multiplier, std::abs(projection->multipliers()[c]));
+              }
+            // a stuck cell that starts to slide again: critical loading
+            if (previous_state[c] == FrictionProjection::CellState::stuck &&
+                state[c] == FrictionProjection::CellState::sliding)
+              {
+                ++critical_loadings;
+                if (first_critical_time < 0)
+                  {
+                    first_critical_time     = t;
+                    first_critical_position = center[c];
+                  }
+                last_critical_time = t;
+              }
+            previous_state[c] = state[c];
+          }
+
+        // friction and wall work: int |v| sigma dz dt and sigma_b v(0) dt
+        const double friction_power = integrate(U, [&](const double u, const double v) {
+          return std::abs(v) * system.stress(u);
+        });
+        double v_wall = 0;
+        for (unsigned int k = 0; k <= layout->degree(); ++k)
+          v_wall += U(layout->index(0, 1, k)) * at_left[k];
+        friction_work += dt * friction_power;
+        wall_work += dt * sigma_b * v_wall;
+
+        if (t >= next_sample - 1e-12 * sample_dt)
+          {
+            sample(U, t);
+            next_sample += sample_dt;
+          }
+      }
+
+      std::vector<std::string>
+      timeseries_names() const override
+      {
+        return {"max_velocity", "front_position", "front_strain", "front_velocity",
+                "stop_front",   "stuck_cells",    "max_stuck_multiplier", "friction_work",
+                "wall_work"};
+      }
+
+      std::vector<double>
+      timeseries_values(const dg::VectorType &U, double) override
+      {
+        const Fronts f = fronts(U);
+        return {f.max_velocity, f.position,        f.strain,         f.velocity,    f.stop,
+                double(f.n_stuck), f.max_multiplier, friction_work, wall_work};
+      }
+
+      void
+      finish(const dg::VectorType &U, const double t, JsonObject &diagnostics,
+             const std::string &directory, const bool write_files) override
+      {
+        if (history.empty() || history.back()[0] < t)
+          sample(U, t);
+        const Fronts f = fronts(U);
+        diagnostics.add("max_velocity", f.max_velocity);
+        diagnostics.add("front_position", f.position);
+        diagnostics.add("front_strain", f.strain);
+        diagnostics.add("front_velocity", f.velocity);
+        diagnostics.add("stop_front", f.stop);
+        double extent = 0;
+        for (const auto &row : history)
+          extent = std::max(extent, row[2]);
+        diagnostics.add("disturbance_extent", extent);
+        diagnostics.add("length", prm.length);
+        diagnostics.add("friction_work", friction_work);
+        diagnostics.add("wall_work", wall_work);
+        diagnostics.add("velocity_sign_flips", static_cast<long long>(velocity_sign_flips));
+        diagnostics.add("velocity_chatter_detected",
+                        static_cast<long long>(velocity_sign_flips > 0 ? 1 : 0));
+        if (system.parameters().friction == FrictionTreatment::projection)
+          {
+            diagnostics.add("max_stuck_velocity", max_stuck_velocity);
+            diagnostics.add("max_stuck_multiplier", max_stuck_multiplier);
+            diagnostics.add("stuck_multiplier_in_bounds",
+                            static_cast<long long>(max_stuck_multiplier <= 1. ? 1 : 0));
+            diagnostics.add("critical_loadings", static_cast<long long>(critical_loadings));
+            diagnostics.add("first_critical_loading_time", first_critical_time);
+            diagnostics.add("first_critical_loading_position", first_critical_position);
+            diagnostics.add("last_critical_loading_time", last_critical_time);
+          }
+        rankine_hugoniot(diagnostics);
+        stationary_comparison(U, diagnostics, directory, write_files);
+        if (write_files)
+          write_history(directory);
+      }
+
+    private:
+      struct Fronts
+      {
+        double       max_velocity = 0, position = 0, strain = 0, velocity = 0, stop = 0;
+        double       max_multiplier = 0;
+        unsigned int n_stuck        = 0;
+      };
+
+      double
+      mode_value(const dg::VectorType &U, const unsigned int c, const unsigned int comp,
+                 const std::vector<double> &basis_values) const
+      {
+        double x = 0;
+        for (unsigned int k = 0; k <= layout->degree(); ++k)
+          x += U(layout->index(c, comp, k)) * basis_values[k];
+        return x;
+      }
+
+      template <typename Density>
+      double
+      integrate(const dg::VectorType &U, const Density &density) const
+      {
+        const unsigned int nm  = layout->degree() + 1;
+        double             sum = 0;
+        for (unsigned int c = 0; c < layout->n_owned(); ++c)
+          for (unsigned int i = 0; i < q_weights.size(); ++i)
+            {
+              double u = 0, v = 0;
+              for (unsigned int k = 0; k < nm; ++k)
+                {
+                  u += U(layout->index(c, 0, k)) * q_basis[i * nm + k];
+                  v += U(layout->index(c, 1, k)) * q_basis[i * nm + k];
+                }
+              sum += q_weights[i] * h * density(u, v);
+            }
+        return sum;
+      }
+
+      /// The pressure front (the steepest drop of |u| at the leading edge),
+      /// the strain and velocity just behind it (extrapolated with a parabola
+      /// from the cells 8 to 20 cells behind, outside the smeared zone), and the stopping front
+      /// (the right end of the rest region behind it).
+      Fronts
+      fronts(const dg::VectorType &U) const
+      {
+        Fronts             f;
+        const unsigned int n   = layout->n_owned();
+        const double       tol = prm.threshold * std::abs(prm.u_b);
+        const auto        &state = projection->states();
+        const bool         implicit =
+          system.parameters().friction == FrictionTreatment::projection;
+        std::vector<double> u(n), v(n);
+        int                 last = -1;
+        for (unsigned int c = 0; c < n; ++c)
+          {
+            u[c]           = U(layout->index(c, 0, 0));
+            v[c]           = U(layout->index(c, 1, 0));
+            f.max_velocity = std::max(f.max_velocity, mode_value(U, c, 1, at_center));
+            if (std::abs(u[c]) > tol)
+              last = c;
+            if (implicit && state[c] == FrictionProjection::CellState::stuck)
+              {
+                ++f.n_stuck;
+                f.max_multiplier = std::max(f.max_multiplier,
+                                            std::abs(projection->multipliers()[c]));
+              }
+          }
+        if (last < 0)
+          return f;
+        // the front: the steepest drop of the cell averages near the leading
+        // edge (within 20 cells behind the last disturbed cell), placed at the
+        // face between the two cells
+        int    i     = last;
+        double steep = 0;
+        for (int c = std::max(0, last - 20); c < last && c + 1 < int(n); ++c)
+          if (std::abs(u[c]) - std::abs(u[c + 1]) > steep)
+            {
+              steep = std::abs(u[c]) - std::abs(u[c + 1]);
+              i     = c;
+            }
+        f.position = center[i] + 0.5 * h;
+        // least-squares parabola through the cell averages 8 to 20 cells
+        // behind (outside the zone the scheme smears), extrapolated to the front
+        const int first = std::max(0, i - 20), end = std::max(first + 1, i - 7);
+        f.strain        = extrapolate(u, first, end, f.position);
+        f.velocity      = extrapolate(v, first, end, f.position);
+        // stopping front: the first cell at rest left of the front
+        for (int c = i; c >= 0; --c)
+          if (implicit ? state[c] == FrictionProjection::CellState::stuck : v[c] <= 0.)
+            {
+              f.stop = center[c] + 0.5 * h;
+              break;
+            }
+        return f;
+      }
+
+      /// The value at z0 of the least-squares polynomial of degree <= 2
+      /// through the cell averages y[first..end) at the cell centres (a
+      /// lower degree when there are too few cells).
+      double
+      extrapolate(const std::vector<double> &y, const int first, const int end,
+                  const double z0) const
+      {
+        const int    n_points = end - first;
+        const int    degree   = std::min(2, n_points - 1);
+        FullMatrix<double> A(degree + 1, degree + 1);
+        Vector<double>     b(degree + 1), x(degree + 1);
+        for (int c = first; c < end; ++c)
+          {
+            // scaled coordinate, so that the normal equations stay well conditioned
+            const double z = (center[c] - z0) / (20 * h);
+            double       zi = 1;
+            for (int r = 0; r <= degree; ++r, zi *= z)
+              {
+                double zj = 1;
+                for (int k = 0; k <= degree; ++k, zj *= z)
+                  A(r, k) += zi * zj;
+                b(r) += zi * y[c];
+              }
+          }
+        A.gauss_jordan();
+        A.vmult(x, b);
+        return x(0);
+      }
+
+      void
+      sample(const dg::VectorType &U, const double t)
+      {
+        const Fronts f = fronts(U);
+        const double energy =
+          integrate(U, [&](const double u, const double v) { return 0.5 * v * v + system.stored_energy(u); });
+        // strain at the probe point
+        const unsigned int probe = std::min(layout->n_owned() - 1,
+                                            static_cast<unsigned int>(std::max(0., prm.probe / h)));
+        history.push_back({t, f.max_velocity, f.position, f.strain, f.velocity, f.stop,
+                           double(f.n_stuck), f.max_multiplier, energy, friction_work,
+                           wall_work, mode_value(U, probe, 0, at_center),
+                           double(critical_loadings)});
+        if (prm.write_sgn_map)
+          {
+            std::vector<float> row(layout->n_owned());
+            const bool         implicit =
+              system.parameters().friction == FrictionTreatment::projection;
+            for (unsigned int c = 0; c < row.size(); ++c)
+              {
+                const double v0 = U(layout->index(c, 1, 0));
+                row[c] = implicit ? projection->multipliers()[c] : (v0 > 0) - (v0 < 0);
+              }
+            sgn_map.push_back(std::move(row));
+            sgn_map_times.push_back(t);
+          }
+      }
+
+      /// The front speed from the history (central differences of the front
+      /// position) against the Rankine-Hugoniot speed |u_L|^{(m-1)/2}, and
+      /// v_L^2 against |u_L|^{m+1} (2.10)-(2.11), at the last sample whose
+      /// neighbours are in the history.
+      void
+      rankine_hugoniot(JsonObject &diagnostics) const
+      {
+        if (history.size() < 3)
+          return;
+        const auto  &a = history[history.size() - 3];
+        const auto  &b = history[history.size() - 2];
+        const auto  &c = history[history.size() - 1];
+        const double speed = (c[2] - a[2]) / (c[0] - a[0]);
+        const double m     = system.parameters().m;
+        const double uL = std::abs(b[3]), vL = b[4];
+        diagnostics.add("front_speed", speed);
+        diagnostics.add("front_speed_over_rankine_hugoniot",
+                        speed / std::pow(uL, 0.5 * (m - 1.)));
+        diagnostics.add("front_velocity_squared_over_rankine_hugoniot",
+                        vL * vL / std::pow(uL, m + 1.));
+      }
+
+      /// Final strain beside Janssen's profile and beside the stationary
+      /// problem (4.1)-(4.2) integrated with the final sgn(v) per cell, over
+      /// the disturbed region.
+      void
+      stationary_comparison(const dg::VectorType &U, JsonObject &diagnostics,
+                            const std::string &directory, const bool write_files) const
+      {
+        const double       G   = system.parameters().gravity;
+        const double       m   = system.parameters().m;
+        const double       tol = prm.threshold * std::abs(prm.u_b);
+        const unsigned int n   = layout->n_owned();
+        const auto        &s   = projection->multipliers();
+        auto               strain_of = [&](const double sigma) {
+          return -std::pow(std::max(sigma, 0.), 1. / m);
+        };
+        // d sigma/dz = G - s sigma over a piece of constant s
+        auto step = [&](const double sigma, const double sc, const double dz) {
+          if (std::abs(sc) < 1e-14)
+            return sigma + G * dz;
+          return G / sc + (sigma - G / sc) * std::exp(-sc * dz);
+        };
+        std::FILE *out = nullptr;
+        if (write_files)
+          {
+            out = std::fopen((directory + "/final-profile.csv").c_str(), "w");
+            std::fprintf(out, "z,strain,strain_janssen,strain_auxiliary,sgn_v\n");
+          }
+        double sigma = sigma_b, max_j = 0, max_a = 0, l2_j = 0, l2_a = 0;
+        for (unsigned int c = 0; c < n; ++c)
+          {
+            const double sc    = system.parameters().friction == FrictionTreatment::projection ?
+                                   s[c] :
+                                   (U(layout->index(c, 1, 0)) > 0 ? 1. : 0.);
+            const double s_mid = step(sigma, sc, 0.5 * h);
+            sigma              = step(s_mid, sc, 0.5 * h);
+            const double z     = center[c];
+            const double u     = mode_value(U, c, 0, at_center);
+            const double u_j   = strain_of((sigma_b - G) * std::exp(-z) + G);
+            const double u_a   = strain_of(s_mid);
+            if (out)
+              std::fprintf(out, "%.12g,%.12g,%.12g,%.12g,%.12g\n", z, u, u_j, u_a, sc);
+            if (std::abs(U(layout->index(c, 0, 0))) <= tol)
+              continue;
+            max_j = std::max(max_j, std::abs(u - u_j));
+            max_a = std::max(max_a, std::abs(u - u_a));
+            l2_j += h * (u - u_j) * (u - u_j);
+            l2_a += h * (u - u_a) * (u - u_a);
+          }
+        if (out)
+          std::fclose(out);
+        diagnostics.add("janssen_max_difference", max_j);
+        diagnostics.add("janssen_l2_difference", std::sqrt(l2_j));
+        diagnostics.add("auxiliary_max_difference", max_a);
+        diagnostics.add("auxiliary_l2_difference", std::sqrt(l2_a));
+      }
+
+      void
+      write_history(const std::string &directory) const
+      {
+        {
+          std::ofstream out(directory + "/history.csv");
+          out << "time,max_velocity,front_position,front_strain,front_velocity,stop_front,"
+                 "stuck_cells,max_stuck_multiplier,energy,friction_work,wall_work,"
+                 "probe_strain,critical_loadings\n";
+          for (const auto &row : history)
+            {
+              for (unsigned int i = 0; i < row.size(); ++i)
+                out << (i ? "," : "") << format_number(row[i]);
+              out << '\n';
+            }
+        }
+        if (!prm.write_sgn_map)
+          return;
+        // one row per sample: time, then sgn(v) (the friction multiplier) per cell
+        std::FILE *out = std::fopen((directory + "/sgn-map.csv").c_str(), "w");
+        std::fprintf(out, "# sgn(v) per cell (columns: cell centres z), one row per sample time\n");
+        std::fprintf(out, "time");
+        for (const double z : center)
+          std::fprintf(out, ",%.8g", z);
+        std::fprintf(out, "\n");
+        for (unsigned int r = 0; r < sgn_map.size(); ++r)
+          {
+            std::fprintf(out, "%.10g", sgn_map_times[r]);
+            for (const float x : sgn_map[r])
+              std::fprintf(out, ",%.5g", x);
+            std::fprintf(out, "\n");
+          }
+        std::fclose(out);
+      }
+
+      const System           system;
+      const ColumnParameters prm;
+      const double           sigma_b, sample_dt;
+
+      const dg::ModalLayout<1>         *layout = nullptr;
+      std::optional<FrictionProjection> projection;
+      std::vector<double>               center, at_center, at_left, q_weights, q_basis;
+      double                            h = 1.;
+
+      std::vector<int>                           previous_sign;
+      std::vector<FrictionProjection::CellState> previous_state;
+      unsigned long long                         velocity_sign_flips = 0, critical_loadings = 0;
+      double max_stuck_velocity = 0, max_stuck_multiplier = 0;
+      double first_critical_time = -1, first_critical_position = -1, last_critical_time = -1;
+      double friction_work = 0, wall_work = 0;
+
+      double                           next_sample = 0;
+      std::vector<std::vector<double>> history;
+      std::vector<std::vector<float>>  sgn_map;
+      std::vector<double>              sgn_map_times;
+    };
+
+    void
+    declare(ParameterHandler &prm)
+    {
+      prm.enter_subsection("Physics");
+      prm.declare_entry("stress exponent m", "1", Patterns::Double(),
+                        "m >= 1 in sigma(u) = max(0, -u|u|^(m-1)) (2.2): 1 (linear), 3/2, 2.");
+      prm.declare_entry("wall strain", "-1", Patterns::Double(),
+                        "u_b < 0: the strain imposed at z = 0 (2.5); the wall stress is "
+                        "sigma_b = |u_b|^m.");
+      prm.declare_entry("gravity", "0", Patterns::Double(),
+                        "G >= 0 (2.4): 0 for the horizontal cylinder of the paper's "
+                        "experiments, > 0 for a vertical column.");
+      prm.declare_entry("regularisation strain", "0", Patterns::Double(),
+                        "u* >= 0 of the Lipschitz-regularised law (3.5): sigma is continued "
+                        "linearly beyond |u| > u*. 0: off.");
+      prm.declare_entry("friction", "projection", friction_names.pattern(),
+                        "projection: the implicit per-cell step of the paper (section 3); "
+                        "explicit_sign: naive explicit source with sgn(v) of the current "
+                        "state; explicit_smooth: naive explicit source with "
+                        "v/sqrt(v^2 + delta^2); none: no friction (the p-system).");
+      prm.declare_entry("smoothing", "0.01", Patterns::Double(),
+                        "delta > 0 of the smoothed sgn (friction = explicit_smooth).");
+      prm.leave_subsection();
+
+      prm.enter_subsection("Mesh");
+      prm.declare_entry("length", "40", Patterns::Double(),
+                        "L > 0: the column is (0, L); choose it so that the disturbance "
+                        "never reaches z = L (summary.json: disturbance_extent).");
+      prm.declare_entry("cells", "1600", Patterns::Integer(1), "Number of cells.");
+      prm.leave_subsection();
+
+      prm.enter_subsection("Diagnostics");
+      prm.declare_entry("sample interval", "0", Patterns::Double(0),
+                        "Time between the rows of history.csv and sgn-map.csv "
+                        "(0: final time / 400).");
+      prm.declare_entry("front threshold", "1e-3", Patterns::Double(0),
+                        "The disturbed region is where |u| > threshold |u_b|.");
+      prm.declare_entry("probe position", "0.5", Patterns::Double(0),
+                        "z of the strain probe in history.csv (drift of stuck material).");
+      prm.declare_entry("closed form", "false", Patterns::Bool(),
+                        "Compare with the exact solution of the linear case (m = 1, G = 0, "
+                        "section 2; final time <= 20): errors in timeseries.csv and "
+                        "summary.json, and convergence studies.");
+      prm.declare_entry("write sgn map", "true", Patterns::Bool(),
+                        "Write sgn-map.csv (friction multiplier per cell and sample).");
+      prm.leave_subsection();
+    }
+
+    ColumnParameters
+    parse(ParameterHandler &prm, const CommonParameters &common)
+    {
+      ColumnParameters p;
+      prm.enter_subsection("Physics");
+      p.physics.m         = prm.get_double("stress exponent m");
+      p.u_b               = prm.get_double("wall strain");
+      p.physics.gravity   = prm.get_double("gravity");
+      p.physics.u_star    = prm.get_double("regularisation strain");
+      p.physics.friction  = friction_names.parse("Physics/friction", prm.get("friction"));
+      p.physics.smoothing = prm.get_double("smoothing");
+      prm.leave_subsection();
+      require(p.physics.m >= 1, "Physics/stress exponent m", p.physics.m, "m >= 1");
+      require(p.u_b < 0, "Physics/wall strain", p.u_b, "u_b < 0 (compression)");
+      require(p.physics.gravity >= 0, "Physics/gravity", p.physics.gravity, "G >= 0");
+      require(p.physics.u_star >= 0, "Physics/regularisation strain", p.physics.u_star,
+              "u* >= 0 (0: off)");
+      require(p.physics.smoothing > 0, "Physics/smoothing", p.physics.smoothing, "delta > 0");
+
+      prm.enter_subsection("Mesh");
+      p.length = prm.get_double("length");
+      p.cells  = prm.get_integer("cells");
+      prm.leave_subsection();
+      require(p.length > 0, "Mesh/length", p.length, "L > 0");
+
+      prm.enter_subsection("Diagnostics");
+      p.sample_dt     = prm.get_double("sample interval");
+      p.threshold     = prm.get_double("front threshold");
+      p.probe         = prm.get_double("probe position");
+      p.closed_form   = prm.get_bool("closed form");
+      p.write_sgn_map = prm.get_bool("write sgn map");
+      prm.leave_subsection();
+      if (p.closed_form)
+        {
+          require(p.physics.m == 1 && p.physics.gravity == 0 && p.physics.u_star == 0 &&
+                    p.physics.friction == FrictionTreatment::projection,
+                  "Diagnostics/closed form", "true",
+                  "only for the linear law m = 1 without gravity or regularisation, with "
+                  "friction = projection");
+          require(common.final_time <= 20, "Diagnostics/closed form", "true",
+                  "final time <= 20 (it is " + format_number(common.final_time) +
+                    "; the closed form loses accuracy to round-off beyond)");
+        }
+      return p;
+    }
+
+    SceneData<1, System>
+    make_scene(const ColumnParameters &p, const CommonParameters &common,
+               const unsigned int cells)
+    {
+      SceneData<1, System> scene{"column", System(p.physics), {}, {}, {}, {}};
+      scene.triangulation = std::make_shared<Triangulation<1>>();
+      GridGenerator::subdivided_hyper_rectangle(*scene.triangulation,
+                                                std::vector<unsigned int>{cells}, Point<1>(0.),
+                                                Point<1>(p.length), true);
+      for (const auto &cell : scene.triangulation->active_cell_iterators())
+        cell->set_material_id(0);
+      // the wall load through the numerical flux at z = 0, outflow at z = L
+      dg::BoundaryCondition<1> wall;
+      wall.kind = dg::BoundaryKind::dirichlet;
+      wall.data = std::make_shared<Functions::ConstantFunction<1>>(std::vector<double>{p.u_b, 0.});
+      scene.boundary[0] = wall;
+      scene.boundary[1] = dg::BoundaryCondition<1>{};
+      scene.initial     = std::make_shared<Functions::ZeroFunction<1>>(2);
+      if (p.closed_form)
+        scene.exact = std::make_shared<LinearColumnFunction>(p.u_b);
+      scene.hooks = std::make_shared<ColumnHooks>(scene.physics, p, common.final_time);
+      // the paper's time step: c dt/dx <= CFL with c = sqrt(-sigma'(u*)), u* the
+      // largest strain, here the wall strain
+      scene.min_wave_speed = scene.physics.sound_speed(p.u_b);
+      return scene;
+    }
+
+    void
+    run(ParameterHandler &prm)
+    {
+      CommonParameters common;
+      common.parse(prm);
+      const ColumnParameters p = parse(prm, common);
+      if (common.convergence)
+        require(p.closed_form, "Diagnostics/closed form", "false",
+                "true: a convergence study needs the exact solution");
+      begin_output(prm, common);
+      if (common.convergence)
+        run_convergence_study<1, System>(
+          [&](const unsigned int cells) { return make_scene(p, common, cells); }, common);
+      else
+        run_simulation(make_scene(p, common, p.cells), common, common.degree, true);
+    }
+  } // namespace
+
+  Scene
+  scene()
+  {
+    Scene s;
+    s.name        = "column";
+    s.description = "granular column with Coulomb wall friction (dynamical Janssen model), "
+                    "u_t - v_z = 0, v_t + sigma(u)_z - G in -sgn(v) sigma(u), 1D";
+    s.fluxes      = "local_lax_friedrichs";
+    s.declare     = declare;
+    s.run         = run;
+    return s;
+  }
+} // namespace granular_dg::column
