@@ -81,6 +81,12 @@ namespace granular_dg
     post_stage(dg::VectorType &, double /*stage_time*/, double /*weight*/)
     {}
 
+    /// After the limiter of every stage (constraints the limiter must not
+    /// break, e.g. v = 0 in cells the friction holds at rest).
+    virtual void
+    post_limiter(dg::VectorType &, double /*stage_time*/)
+    {}
+
     /// After every completed step (cheap per-step diagnostics).
     virtual void
     end_of_step(const dg::VectorType &, double /*t*/, double /*dt*/, unsigned long /*step*/)

@@ -355,6 +355,7 @@ namespace granular_dg
     auto post_stage = [&](dg::VectorType &u, const double stage_time, const double weight) {
       hooks.post_stage(u, stage_time, weight);
       troubled = limiter.apply(u, stage_time);
+      hooks.post_limiter(u, stage_time);
       const auto report = op.check_admissibility(u);
       if (!report.ok)
         throw internal::Inadmissible{stage_time, report};

@@ -28,4 +28,10 @@ namespace granular_dg
     Scene
     scene();
   }
+
+  namespace column
+  {
+    Scene
+    scene();
+  }
 } // namespace granular_dg

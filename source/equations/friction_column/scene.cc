@@ -49,6 +49,7 @@ namespace granular_dg::column
       double       probe         = 0.5;
       bool         closed_form   = false;
       bool         write_sgn_map = true;
+      bool         closed_end    = false;
     };
 
     /// Everything the scene measures along the way.
@@ -94,6 +95,13 @@ namespace granular_dg::column
       {
         if (system.parameters().friction == FrictionTreatment::projection)
           projection->apply(U, weight);
+      }
+
+      void
+      post_limiter(dg::VectorType &U, double) override
+      {
+        if (system.parameters().friction == FrictionTreatment::projection)
+          projection->keep_stuck_at_rest(U);
       }
 
       void
@@ -190,6 +198,15 @@ namespace granular_dg::column
         for (const auto &row : history)
           extent = std::max(extent, row[2]);
         diagnostics.add("disturbance_extent", extent);
+        // the strain at the probe over the second half of the run: material
+        // at rest must keep its strain (0 when the probe is stuck)
+        {
+          unsigned int half = 0;
+          for (unsigned int r = 0; r < history.size(); ++r)
+            if (std::abs(history[r][0] - 0.5 * t) < std::abs(history[half][0] - 0.5 * t))
+              half = r;
+          diagnostics.add("probe_strain_drift", history.back()[11] - history[half][11]);
+        }
         diagnostics.add("length", prm.length);
         diagnostics.add("friction_work", friction_work);
         diagnostics.add("wall_work", wall_work);
@@ -529,6 +546,9 @@ namespace granular_dg::column
                         "L > 0: the column is (0, L); choose it so that the disturbance "
                         "never reaches z = L (summary.json: disturbance_extent).");
       prm.declare_entry("cells", "1600", Patterns::Integer(1), "Number of cells.");
+      prm.declare_entry("far end", "outflow", Patterns::Selection("outflow|wall"),
+                        "The end z = L: outflow (a semi-infinite column) or wall (a closed "
+                        "bottom at rest, for a vertical column under gravity).");
       prm.leave_subsection();
 
       prm.enter_subsection("Diagnostics");
@@ -570,6 +590,7 @@ namespace granular_dg::column
       prm.enter_subsection("Mesh");
       p.length = prm.get_double("length");
       p.cells  = prm.get_integer("cells");
+      p.closed_end = prm.get("far end") == "wall";
       prm.leave_subsection();
       require(p.length > 0, "Mesh/length", p.length, "L > 0");
 
@@ -605,12 +626,13 @@ namespace granular_dg::column
                                                 Point<1>(p.length), true);
       for (const auto &cell : scene.triangulation->active_cell_iterators())
         cell->set_material_id(0);
-      // the wall load through the numerical flux at z = 0, outflow at z = L
+      // the wall load through the numerical flux at z = 0, outflow or a
+      // closed end at z = L
       dg::BoundaryCondition<1> wall;
       wall.kind = dg::BoundaryKind::dirichlet;
       wall.data = std::make_shared<Functions::ConstantFunction<1>>(std::vector<double>{p.u_b, 0.});
       scene.boundary[0] = wall;
-      scene.boundary[1] = dg::BoundaryCondition<1>{};
+      scene.boundary[1].kind = p.closed_end ? dg::BoundaryKind::wall : dg::BoundaryKind::outflow;
       scene.initial     = std::make_shared<Functions::ZeroFunction<1>>(2);
       if (p.closed_form)
         scene.exact = std::make_shared<LinearColumnFunction>(p.u_b);

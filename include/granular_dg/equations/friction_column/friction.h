@@ -111,6 +111,17 @@ namespace granular_dg::column
         }
     }
 
+    /// Keep the cells the friction holds at rest: a limiter that mixes
+    /// components (characteristic limiting) must not set them in motion.
+    void
+    keep_stuck_at_rest(LinearAlgebra::distributed::Vector<double> &U) const
+    {
+      for (unsigned int c = 0; c < layout.n_owned(); ++c)
+        if (state[c] == CellState::stuck)
+          for (unsigned int k = 0; k < n_modes; ++k)
+            U(layout.index(c, 1, k)) = 0.;
+    }
+
     /// sgn(v) of the last step per owned cell (the friction multiplier)
     const std::vector<double> &
     multipliers() const

@@ -219,6 +219,7 @@ namespace granular_dg::column
 
     /// Dirichlet (the wall load): prescribed strain g[0], velocity from the
     /// interior, so that the load enters through the numerical flux;
+    /// wall: a closed end at rest, the mirror state v_p = -v_m;
     /// outflow: U_p = U_m.
     template <typename Number>
     State<Number>
@@ -229,9 +230,12 @@ namespace granular_dg::column
       State<Number> U_p = U_m;
       if (kind == dg::BoundaryKind::dirichlet)
         U_p[0] = g[0];
+      else if (kind == dg::BoundaryKind::wall)
+        U_p[1] = -U_m[1];
       else
         AssertThrow(kind == dg::BoundaryKind::outflow,
-                    ExcMessage("the column knows dirichlet (wall load) and outflow boundaries"));
+                    ExcMessage("the column knows dirichlet (wall load), wall and outflow "
+                               "boundaries"));
       return U_p;
     }
 
