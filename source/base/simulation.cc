@@ -15,6 +15,9 @@ namespace granular_dg
        {dg::NumericalFlux::roe_lax_friedrichs, "roe_lax_friedrichs"},
        {dg::NumericalFlux::upwind, "upwind"},
        {dg::NumericalFlux::godunov, "godunov"}});
+    const EnumNames<dg::Engine> engine_names({{dg::Engine::automatic, "auto"},
+                                              {dg::Engine::matrix_free, "matrix_free"},
+                                              {dg::Engine::line, "line"}});
     const EnumNames<dg::LimiterType> limiter_names(
       {{dg::LimiterType::none, "none"},
        {dg::LimiterType::componentwise, "componentwise"},
@@ -53,6 +56,11 @@ namespace granular_dg
                       "state with continuous velocity and stress), roe_lax_friedrichs "
                       "(Lax-Friedrichs with the Roe-matrix speed), upwind "
                       "(Engquist-Osher for scalar laws), godunov. Allowed: " + fluxes + ".");
+    prm.declare_entry("engine", "auto", engine_names.pattern(),
+                      "The operator: matrix_free (deal.II MatrixFree cell/face kernels, "
+                      "any dimension, MPI) or line (a lean 1D kernel of the same "
+                      "discretisation, serial, several times faster in 1D); auto: line "
+                      "for serial 1D runs, matrix_free otherwise.");
     prm.leave_subsection();
 
     prm.enter_subsection("Time stepping");
@@ -112,6 +120,7 @@ namespace granular_dg
     prm.enter_subsection("Discretization");
     degree = prm.get_integer("degree");
     flux   = flux_names.parse("Discretization/numerical flux", prm.get("numerical flux"));
+    engine = engine_names.parse("Discretization/engine", prm.get("engine"));
     prm.leave_subsection();
 
     prm.enter_subsection("Time stepping");

@@ -97,6 +97,18 @@ namespace granular_dg::dg
       }
   }
 
+  template <int dim>
+  void
+  ModalLayout<dim>::localize(const Utilities::MPI::Partitioner &partitioner)
+  {
+    for (auto &i : dof_index)
+      {
+        AssertThrow(partitioner.in_local_range(i) || partitioner.is_ghost_entry(i),
+                    ExcMessage("ModalLayout: a neighbour's DoF is not in the vector's ghost set"));
+        i = partitioner.global_to_local(i);
+      }
+  }
+
   template class ModalLayout<1>;
   template class ModalLayout<2>;
 } // namespace granular_dg::dg

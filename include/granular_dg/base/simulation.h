@@ -29,6 +29,7 @@ namespace granular_dg
   {
     unsigned int      degree = 2;
     dg::NumericalFlux flux   = dg::NumericalFlux::local_lax_friedrichs;
+    dg::Engine        engine = dg::Engine::automatic;
 
     double        final_time = 1.;
     double        cfl        = 0.2;
@@ -69,7 +70,8 @@ namespace granular_dg
     virtual ~SceneHooks() = default;
 
     /// Once the discretisation exists (the layout gives cell-wise access to
-    /// the Legendre modes of the solution vector).
+    /// the Legendre modes of the solution vector: local indices, to be used
+    /// with local_element()).
     virtual void
     initialize(const DoFHandler<dim> &, const Mapping<dim> &, const dg::ModalLayout<dim> &)
     {}

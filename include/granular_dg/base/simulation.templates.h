@@ -17,6 +17,7 @@
 #include <granular_dg/base/errors.h>
 #include <granular_dg/base/simulation.h>
 #include <granular_dg/dg/dg_operator.h>
+#include <granular_dg/dg/line_operator.h>
 #include <granular_dg/dg/time_integrator.h>
 
 #include <algorithm>
@@ -241,13 +242,17 @@ namespace granular_dg
     };
   } // namespace internal
 
-  template <int dim, typename Physics>
+  namespace internal
+  {
+  /// The time loop of run_simulation() on one operator type (MatrixFree's
+  /// DGOperator or, in 1D, the LineOperator).
+  template <int dim, typename Physics, typename Operator>
   RunResult
-  run_simulation(const SceneData<dim, Physics> &scene,
-                 const CommonParameters        &params,
-                 const unsigned int             degree,
-                 const bool                     write_files,
-                 const double                   dt_factor)
+  run_with(const SceneData<dim, Physics> &scene,
+           const CommonParameters        &params,
+           const unsigned int             degree,
+           const bool                     write_files,
+           const double                   dt_factor)
   {
     Timer wall_timer;
     const MPI_Comm comm = MPI_COMM_WORLD;
@@ -259,19 +264,19 @@ namespace granular_dg
     dof_handler.distribute_dofs(fe);
     const MappingQ1<dim> mapping;
 
-    dg::DGOperator<dim, Physics> op(scene.physics, params.flux, scene.boundary);
+    Operator op(scene.physics, params.flux, scene.boundary);
     op.reinit(mapping, dof_handler);
+    dg::VectorType solution, last_good;
+    op.initialize_vector(solution);
+    op.initialize_vector(last_good);
+
     dg::ModalLimiter<dim, Physics> limiter(scene.physics, params.limiter, params.tvb_M,
                                            scene.boundary);
-    limiter.reinit(dof_handler);
+    limiter.reinit(dof_handler, solution);
     dg::SSPRK3<> integrator;
     SceneHooks<dim> no_hooks;
     SceneHooks<dim> &hooks = scene.hooks ? *scene.hooks : no_hooks;
     hooks.initialize(dof_handler, mapping, limiter.layout());
-
-    dg::VectorType solution, last_good;
-    op.initialize_vector(solution);
-    op.initialize_vector(last_good);
     scene.initial->set_time(0.);
     op.project(*scene.initial, solution);
     limiter.apply(solution, 0.);
@@ -316,7 +321,7 @@ namespace granular_dg
     unsigned long step = 0;
     unsigned int  troubled = 0;
     auto energy = [&](const Tensor<1, Physics::n_components> &U,
-                      const typename dg::DGOperator<dim, Physics>::template Coefficients<double> &a) {
+                      const typename Operator::template Coefficients<double> &a) {
       return scene.physics.energy(U, a);
     };
     auto l2_error = [&](const dg::VectorType &u) {
@@ -498,6 +503,26 @@ namespace granular_dg
     return result;
   }
 
+  } // namespace internal
+
+  template <int dim, typename Physics>
+  RunResult
+  run_simulation(const SceneData<dim, Physics> &scene,
+                 const CommonParameters        &params,
+                 const unsigned int             degree,
+                 const bool                     write_files,
+                 const double                   dt_factor)
+  {
+    if constexpr (dim == 1)
+      if (params.engine == dg::Engine::line ||
+          (params.engine == dg::Engine::automatic &&
+           Utilities::MPI::n_mpi_processes(MPI_COMM_WORLD) == 1))
+        return internal::run_with<dim, Physics, dg::LineOperator<Physics>>(scene, params, degree,
+                                                                            write_files, dt_factor);
+    return internal::run_with<dim, Physics, dg::DGOperator<dim, Physics>>(scene, params, degree,
+                                                                          write_files, dt_factor);
+  }
+
   template <int dim, typename Physics>
   void
   run_convergence_study(
@@ -510,7 +535,7 @@ namespace granular_dg
       {
         table.open(params.directory + "/convergence.csv",
                    {"degree", "cells", "dofs", "h", "l2_error", "eoc", "l1_error", "eoc_l1",
-                    "time_steps", "wall_time_s"});
+                    "time_steps", "wall_time_s", "time_loop_s"});
         rates.open(params.directory + "/convergence-rates.csv",
                    {"degree", "eoc_finest", "eoc_l1_finest"},
                    "L2 and L1 error rates of the two finest meshes (all components)");
@@ -535,7 +560,8 @@ namespace granular_dg
             if (root)
               {
                 table.row({double(p), double(cells), double(r.n_dofs), r.h_min, r.l2_error,
-                           eoc, r.l1_error, eoc1, double(r.n_steps), r.wall_time_s});
+                           eoc, r.l1_error, eoc1, double(r.n_steps), r.wall_time_s,
+                           r.time_loop_s});
                 std::cout << std::setw(8) << p << std::setw(9) << cells << std::setw(11)
                           << r.n_dofs << std::setw(15) << std::scientific
                           << std::setprecision(4) << r.l2_error << std::defaultfloat

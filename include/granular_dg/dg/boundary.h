@@ -5,6 +5,9 @@
 
 #include <map>
 #include <memory>
+#include <string>
+#include <type_traits>
+#include <utility>
 
 namespace granular_dg::dg
 {
@@ -31,4 +34,30 @@ namespace granular_dg::dg
 
   template <int dim>
   using BoundaryMap = std::map<dealii::types::boundary_id, BoundaryCondition<dim>>;
+
+  namespace internal
+  {
+    template <typename Physics, typename State, typename Coefficients, typename = void>
+    struct has_is_admissible : std::false_type
+    {};
+    template <typename Physics, typename State, typename Coefficients>
+    struct has_is_admissible<
+      Physics, State, Coefficients,
+      std::void_t<decltype(std::declval<const Physics &>().is_admissible(
+        std::declval<const State &>(), std::declval<const Coefficients &>()))>> : std::true_type
+    {};
+  } // namespace internal
+
+  /// The admissibility test of a state: the physics' cheap is_admissible(U, a)
+  /// when it has one (then admissibility_violation() only words the
+  /// failure), otherwise admissibility_violation(U, a) == "".
+  template <typename Physics, typename State, typename Coefficients>
+  bool
+  admissible(const Physics &physics, const State &U, const Coefficients &a)
+  {
+    if constexpr (internal::has_is_admissible<Physics, State, Coefficients>::value)
+      return physics.is_admissible(U, a);
+    else
+      return physics.admissibility_violation(U, a).empty();
+  }
 } // namespace granular_dg::dg

@@ -464,12 +464,10 @@ namespace granular_dg::dg
                 State<double> u;
                 for (unsigned int c = 0; c < n_components; ++c)
                   u[c] = U[c][v];
-                std::string why =
-                  phys.admissibility_violation(u, lane_coefficients(cell, v));
-                if (!why.empty())
+                if (!admissible(phys, u, lane_coefficients(cell, v)))
                   {
-                    report.ok = false;
-                    report.reason = why;
+                    report.ok     = false;
+                    report.reason = phys.admissibility_violation(u, lane_coefficients(cell, v));
                     const Point<dim> p =
                       internal::lane_point<dim>(phi.quadrature_point(q), v);
                     for (int d = 0; d < dim; ++d)

@@ -7,6 +7,7 @@
 #include <granular_dg/dg/boundary.h>
 #include <granular_dg/dg/modal_layout.h>
 
+#include <array>
 #include <vector>
 
 namespace granular_dg::dg
@@ -54,8 +55,9 @@ namespace granular_dg::dg
       , boundary(std::move(boundary))
     {}
 
+    /// Index tables for the vectors of the run (their partitioner).
     void
-    reinit(const DoFHandler<dim> &dof_handler);
+    reinit(const DoFHandler<dim> &dof_handler, const VectorType &vector);
 
     /// Limit in place at time t (for boundary data); returns the number of
     /// troubled (modified) cells on this rank.
@@ -88,6 +90,7 @@ namespace granular_dg::dg
     double           M;
     BoundaryMap<dim> boundary;
     ModalLayout<dim> cells;
+    std::vector<std::array<double, Physics::n_coefficients>> coefficients;
 
     mutable std::vector<unsigned char> troubled;
   };

@@ -30,10 +30,15 @@ namespace granular_dg::dg
 
   template <int dim, typename Physics>
   void
-  ModalLimiter<dim, Physics>::reinit(const DoFHandler<dim> &dof_handler)
+  ModalLimiter<dim, Physics>::reinit(const DoFHandler<dim> &dof_handler,
+                                     const VectorType      &vector)
   {
     cells.reinit(dof_handler);
+    cells.localize(*vector.get_partitioner());
     troubled.assign(cells.n_owned(), 0);
+    coefficients.resize(cells.n_owned());
+    for (unsigned int i = 0; i < cells.n_owned(); ++i)
+      coefficients[i] = physics.coefficients(cells.cell(i)->material_id());
   }
 
   template <int dim, typename Physics>
@@ -50,7 +55,7 @@ namespace granular_dg::dg
 
     auto value = [&](const unsigned int cell, const unsigned int c,
                      const unsigned int mode) -> double & {
-      return u(cells.index(cell, c, mode));
+      return u.local_element(cells.index(cell, c, mode));
     };
     using State = Tensor<1, n_components>;
     auto average = [&](const unsigned int cell) {
@@ -67,7 +72,7 @@ namespace granular_dg::dg
     for (unsigned int i = 0; i < cells.n_owned(); ++i)
       {
         const State avg = average(i);
-        const auto  a   = physics.coefficients(cells.cell(i)->material_id());
+        const auto &a   = coefficients[i];
 
         // the neighbour average across face f; false at an outflow boundary
         auto neighbor_average = [&](const unsigned int f, State &result) {

@@ -1,5 +1,6 @@
 #pragma once
 
+#include <deal.II/base/partitioner.h>
 #include <deal.II/base/point.h>
 #include <deal.II/dofs/dof_handler.h>
 
@@ -20,8 +21,10 @@ namespace granular_dg::dg
    *
    * Mode m of a cell is the tensor-product index m = sum_d k_d stride(d) of
    * the 1D degrees k_d; mode 0 is the cell average (the orthonormal L_0 = 1 on
-   * the unit cell). Vector entries are addressed by global index (operator()
-   * of the distributed vector), so ghost neighbours need update_ghost_values().
+   * the unit cell). index() is the global DoF index until localize() turns the
+   * table into local indices of a vector's partitioner (then address entries
+   * with local_element(); ghost neighbours need update_ghost_values()). In a
+   * serial run the two coincide.
    */
   template <int dim>
   class ModalLayout
@@ -30,6 +33,12 @@ namespace granular_dg::dg
     void
     reinit(const DoFHandler<dim> &dof_handler);
 
+    /// Turn the index table into local indices of the partitioner (the
+    /// owned range, then the ghosts); every neighbour's entries must be in
+    /// the partitioner's ghost set.
+    void
+    localize(const Utilities::MPI::Partitioner &partitioner);
+
     unsigned int n_owned() const { return n_owned_cells; }
     unsigned int n_cells() const { return cells.size(); }
     unsigned int n_components() const { return n_comp; }
@@ -37,7 +46,7 @@ namespace granular_dg::dg
     unsigned int n_modes() const { return n_modes_cell; }
     unsigned int stride(const unsigned int d) const { return strides[d]; }
 
-    /// global vector index of (cell, component, mode)
+    /// vector index of (cell, component, mode): global, or local after localize()
     types::global_dof_index
     index(const unsigned int cell, const unsigned int component, const unsigned int mode) const
     {

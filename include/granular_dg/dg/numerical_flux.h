@@ -25,6 +25,15 @@ namespace granular_dg::dg
     godunov
   };
 
+  /// The operator behind a run: MatrixFree's DGOperator (any dim), or the lean
+  /// LineOperator (1D, serial); automatic takes the line engine in serial 1D.
+  enum class Engine
+  {
+    automatic,
+    matrix_free,
+    line
+  };
+
   /// Local Lax-Friedrichs (Rusanov): {F}.n + lambda/2 (U_m - U_p),
   /// lambda = max(|lambda(U_m)|, |lambda(U_p)|), each side with its own
   /// coefficients (blind to a material jump in every other respect).

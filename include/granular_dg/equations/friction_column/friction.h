@@ -43,32 +43,41 @@ namespace granular_dg::column
       , multiplier(layout.n_owned(), 0.)
       , state(layout.n_owned(), CellState::unloaded)
     {
-      // sigma(u_h) is not a polynomial for non-integer m: a few extra points
-      const QGauss<1> q(n_modes + 3);
+      AssertThrow(n_modes <= max_modes, ExcMessage("degrees 0-4"));
+      // the operator's quadrature (p + 2 Gauss points)
+      const QGauss<1> q(n_modes + 1);
       weights = q.get_weights();
-      basis.resize(q.size() * n_modes);
+      basis.assign(q.size() * max_modes, 0.);
       for (unsigned int k = 0; k < n_modes; ++k)
         {
           const Polynomials::Legendre L(k);
           for (unsigned int i = 0; i < q.size(); ++i)
-            basis[i * n_modes + k] = L.value(q.point(i)[0]);
+            basis[i * max_modes + k] = L.value(q.point(i)[0]);
         }
+      for (unsigned int c = 0; c < layout.n_owned(); ++c)
+        for (unsigned int k = 0; k < n_modes; ++k)
+          {
+            AssertThrow(layout.index(c, 0, k) == layout.index(c, 0, 0) + k * mode_stride() &&
+                          layout.index(c, 1, k) == layout.index(c, 1, 0) + k * mode_stride(),
+                        ExcMessage("FrictionProjection expects affine mode indices"));
+          }
     }
 
-    /// R_l of a cell from the strain modes (n_modes values).
+    /// R_l of a cell from its strain modes u[k * stride].
+    template <unsigned int nm>
     void
-    load_modes(const double *strain_modes, double *R) const
+    load_modes(const double *u, const std::size_t stride, double *R) const
     {
-      for (unsigned int k = 0; k < n_modes; ++k)
+      for (unsigned int k = 0; k < nm; ++k)
         R[k] = 0.;
       for (unsigned int i = 0; i < weights.size(); ++i)
         {
-          const double *phi = &basis[i * n_modes];
-          double        u   = 0;
-          for (unsigned int k = 0; k < n_modes; ++k)
-            u += strain_modes[k] * phi[k];
-          const double ws = weights[i] * system.stress(u);
-          for (unsigned int k = 0; k < n_modes; ++k)
+          const double *phi = &basis[i * max_modes];
+          double        ui  = 0;
+          for (unsigned int k = 0; k < nm; ++k)
+            ui += u[k * stride] * phi[k];
+          const double ws = weights[i] * system.stress(ui);
+          for (unsigned int k = 0; k < nm; ++k)
             R[k] += ws * phi[k];
         }
     }
@@ -77,37 +86,18 @@ namespace granular_dg::column
     void
     apply(LinearAlgebra::distributed::Vector<double> &U, const double w)
     {
-      std::vector<double> u(n_modes), v(n_modes), R(n_modes);
-      for (unsigned int c = 0; c < layout.n_owned(); ++c)
+      switch (n_modes)
         {
-          for (unsigned int k = 0; k < n_modes; ++k)
-            {
-              u[k] = U(layout.index(c, 0, k));
-              v[k] = U(layout.index(c, 1, k));
-            }
-          load_modes(u.data(), R.data());
-          if (!(R[0] > 0.))
-            {
-              state[c]      = CellState::unloaded;
-              multiplier[c] = v[0] > 0 ? 1. : (v[0] < 0 ? -1. : 0.);
-              continue;
-            }
-          const double s = v[0] / (w * R[0]);
-          if (std::abs(s) <= 1.)
-            {
-              state[c]      = CellState::stuck;
-              multiplier[c] = s;
-              for (unsigned int k = 0; k < n_modes; ++k)
-                U(layout.index(c, 1, k)) = 0.;
-            }
-          else
-            {
-              const double sgn = s > 0 ? 1. : -1.;
-              state[c]         = CellState::sliding;
-              multiplier[c]    = sgn;
-              for (unsigned int k = 0; k < n_modes; ++k)
-                U(layout.index(c, 1, k)) = v[k] - w * sgn * R[k];
-            }
+          case 1:
+            return apply_impl<1>(U, w);
+          case 2:
+            return apply_impl<2>(U, w);
+          case 3:
+            return apply_impl<3>(U, w);
+          case 4:
+            return apply_impl<4>(U, w);
+          default:
+            return apply_impl<5>(U, w);
         }
     }
 
@@ -119,7 +109,7 @@ namespace granular_dg::column
       for (unsigned int c = 0; c < layout.n_owned(); ++c)
         if (state[c] == CellState::stuck)
           for (unsigned int k = 0; k < n_modes; ++k)
-            U(layout.index(c, 1, k)) = 0.;
+            U.local_element(layout.index(c, 1, k)) = 0.;
     }
 
     /// sgn(v) of the last step per owned cell (the friction multiplier)
@@ -136,6 +126,51 @@ namespace granular_dg::column
     }
 
   private:
+    static constexpr unsigned int max_modes = 5;
+
+    std::size_t
+    mode_stride() const
+    {
+      return n_modes > 1 ? layout.index(0, 0, 1) - layout.index(0, 0, 0) : 1;
+    }
+
+    template <unsigned int nm>
+    void
+    apply_impl(LinearAlgebra::distributed::Vector<double> &U, const double w)
+    {
+      const std::size_t stride = mode_stride();
+      double           *data   = U.begin();
+      double            R[nm];
+      for (unsigned int c = 0; c < layout.n_owned(); ++c)
+        {
+          const double *u = data + layout.index(c, 0, 0);
+          double       *v = data + layout.index(c, 1, 0);
+          load_modes<nm>(u, stride, R);
+          if (!(R[0] > 0.))
+            {
+              state[c]      = CellState::unloaded;
+              multiplier[c] = v[0] > 0 ? 1. : (v[0] < 0 ? -1. : 0.);
+              continue;
+            }
+          const double s = v[0] / (w * R[0]);
+          if (std::abs(s) <= 1.)
+            {
+              state[c]      = CellState::stuck;
+              multiplier[c] = s;
+              for (unsigned int k = 0; k < nm; ++k)
+                v[k * stride] = 0.;
+            }
+          else
+            {
+              const double sgn = s > 0 ? 1. : -1.;
+              state[c]         = CellState::sliding;
+              multiplier[c]    = sgn;
+              for (unsigned int k = 0; k < nm; ++k)
+                v[k * stride] -= w * sgn * R[k];
+            }
+        }
+    }
+
     const System              system;
     const dg::ModalLayout<1> &layout;
     const unsigned int        n_modes;

@@ -146,6 +146,10 @@ namespace granular_dg::column
         // sigma = -u for u <= 0: the left derivative at u = 0 is -1
         return compare_and_apply_mask<SIMDComparison::less_than_or_equal>(u, Number(0.), Number(1.),
                                                                   Number(0.));
+      if (p.m == 1.5)
+        return 1.5 * std::sqrt(w);
+      if (p.m == 2.)
+        return 2. * w;
       return p.m * std::pow(w, p.m - 1.);
     }
 
@@ -265,6 +269,12 @@ namespace granular_dg::column
       L[1][1]           = -0.5 / cn;
     }
 
+    bool
+    is_admissible(const State<double> &U, const Coefficients<double> &) const
+    {
+      return std::isfinite(U[0]) && std::isfinite(U[1]);
+    }
+
     std::string
     admissibility_violation(const State<double> &U, const Coefficients<double> &) const
     {
@@ -278,8 +288,12 @@ namespace granular_dg::column
     Number
     power(const Number &w) const
     {
+      // the paper's laws without pow(), which costs as much as the rest of a
+      // flux evaluation
       if (p.m == 1.)
         return w;
+      if (p.m == 1.5)
+        return w * std::sqrt(w);
       if (p.m == 2.)
         return w * w;
       // w^m with w >= 0; pow(0, m) = 0 for m > 0

@@ -339,6 +339,16 @@ namespace granular_dg::elasticity
     }
 
     /// Empty string when U is admissible, otherwise the failed test.
+    bool
+    is_admissible(const State<double> &U, const Coefficients<double> &a) const
+    {
+      for (unsigned int c = 0; c < n_components; ++c)
+        if (!std::isfinite(U[c]))
+          return false;
+      // sigma' > 0 and a finite stress (the exponential law can overflow)
+      return stress_derivative(U[0], a) > 0. && std::isfinite(stress(U[0], a));
+    }
+
     std::string
     admissibility_violation(const State<double> &U, const Coefficients<double> &a) const
     {

@@ -1,0 +1,417 @@
+#pragma once
+
+#include <deal.II/base/function.h>
+#include <deal.II/base/mpi.h>
+#include <deal.II/base/polynomial.h>
+#include <deal.II/base/quadrature_lib.h>
+#include <deal.II/dofs/dof_handler.h>
+#include <deal.II/fe/mapping.h>
+#include <deal.II/lac/la_parallel_vector.h>
+
+#include <granular_dg/base/errors.h>
+#include <granular_dg/dg/boundary.h>
+#include <granular_dg/dg/dg_operator.h>
+#include <granular_dg/dg/modal_layout.h>
+#include <granular_dg/dg/numerical_flux.h>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <functional>
+#include <limits>
+#include <vector>
+
+namespace granular_dg::dg
+{
+  using namespace dealii;
+
+  /**
+   * The lean 1D DG operator: the same discretisation as DGOperator<1> (modal
+   * FE_DGQLegendre, p + 2 Gauss points, the same numerical fluxes, boundary
+   * states and inverse mass matrix, the same vector and DoF numbering), written
+   * as plain loops over a line of cells instead of MatrixFree's cell and face
+   * batches. In 1D the per-cell and per-face overhead of a generic engine
+   * dominates (a cell has only (p+1) n_components unknowns), and here a cell
+   * costs a few hundred flops and no indirection. Serial only (1D runs are).
+   *
+   * The kernel is compiled for each degree 0-4 (the number of modes is a
+   * template parameter, so the compiler unrolls the mode loops).
+   */
+  template <typename Physics>
+  class LineOperator
+  {
+  public:
+    static constexpr unsigned int n_components   = Physics::n_components;
+    static constexpr unsigned int n_coefficients = Physics::n_coefficients;
+    template <typename T>
+    using State = Tensor<1, n_components, T>;
+    template <typename T>
+    using Coefficients = std::array<T, n_coefficients>;
+
+    LineOperator(const Physics &physics, const NumericalFlux flux, BoundaryMap<1> bc)
+      : phys(physics)
+      , flux_type(flux)
+      , boundary(std::move(bc))
+    {}
+
+    void
+    reinit(const Mapping<1> &, const DoFHandler<1> &dof_handler)
+    {
+      require(Utilities::MPI::n_mpi_processes(MPI_COMM_WORLD) == 1, "Discretization/engine",
+              "line", "auto or matrix_free under MPI (the line engine is serial)");
+      layout.reinit(dof_handler);
+      n_cells = layout.n_owned();
+      n_modes = layout.n_modes();
+      AssertThrow(n_modes <= max_modes, ExcMessage("the line engine supports degrees 0-4"));
+      dofs_per_cell = n_components * n_modes;
+      n_dofs        = dof_handler.n_dofs();
+
+      // the vector index of (cell, component, mode) must be affine, and the
+      // cells ordered left to right, so that the kernel can stream
+      comp_stride = n_components > 1 ? layout.index(0, 1, 0) - layout.index(0, 0, 0) : n_modes;
+      mode_stride = n_modes > 1 ? layout.index(0, 0, 1) - layout.index(0, 0, 0) : 1;
+      for (unsigned int c = 0; c < n_cells; ++c)
+        {
+          for (unsigned int i = 0; i < n_components; ++i)
+            for (unsigned int k = 0; k < n_modes; ++k)
+              AssertThrow(layout.index(c, i, k) == c * dofs_per_cell + i * comp_stride +
+                                                     k * mode_stride,
+                          ExcMessage("the line engine needs the cell-wise DoF numbering "
+                                     "of a freshly distributed 1D DoFHandler"));
+          AssertThrow(c == 0 || layout.neighbor(c, 0) == int(c) - 1,
+                      ExcMessage("the line engine needs the cells ordered left to right"));
+        }
+      periodic = layout.neighbor(0, 0) == int(n_cells) - 1;
+
+      h.resize(n_cells);
+      x_left.resize(n_cells);
+      coefficients.resize(n_cells);
+      for (unsigned int c = 0; c < n_cells; ++c)
+        {
+          h[c]            = layout.extent(c, 0);
+          x_left[c]       = layout.cell(c)->vertex(0)[0];
+          coefficients[c] = phys.coefficients(layout.cell(c)->material_id());
+        }
+      if (!periodic)
+        {
+          left_bc  = find_bc(layout.boundary_id(0, 0));
+          right_bc = find_bc(layout.boundary_id(n_cells - 1, 1));
+        }
+
+      const QGauss<1> q(n_modes + 1);
+      n_q      = q.size();
+      weights  = q.get_weights();
+      points.resize(n_q);
+      basis.assign(n_q * max_modes, 0.);
+      derivative.assign(n_q * max_modes, 0.);
+      for (unsigned int k = 0; k < n_modes; ++k)
+        {
+          const Polynomials::Legendre L(k);
+          std::vector<double>         values(2);
+          for (unsigned int i = 0; i < n_q; ++i)
+            {
+              points[i] = q.point(i)[0];
+              L.value(points[i], values);
+              basis[i * max_modes + k]      = values[0];
+              derivative[i * max_modes + k] = values[1];
+            }
+          at_0[k] = layout.value_at_0(k);
+          at_1[k] = layout.value_at_1(k);
+        }
+    }
+
+    void
+    initialize_vector(LinearAlgebra::distributed::Vector<double> &v) const
+    {
+      v.reinit(n_dofs);
+    }
+
+    /// dst = M^{-1} R(t, src)
+    void
+    apply(const double t, const LinearAlgebra::distributed::Vector<double> &src,
+          LinearAlgebra::distributed::Vector<double> &dst) const
+    {
+      switch (n_modes)
+        {
+          case 1:
+            return apply_impl<1>(t, src.begin(), dst.begin());
+          case 2:
+            return apply_impl<2>(t, src.begin(), dst.begin());
+          case 3:
+            return apply_impl<3>(t, src.begin(), dst.begin());
+          case 4:
+            return apply_impl<4>(t, src.begin(), dst.begin());
+          default:
+            return apply_impl<5>(t, src.begin(), dst.begin());
+        }
+    }
+
+    /// L2 projection (the operator's quadrature, as DGOperator::project).
+    void
+    project(const Function<1> &f, LinearAlgebra::distributed::Vector<double> &dst) const
+    {
+      for (unsigned int c = 0; c < n_cells; ++c)
+        for (unsigned int i = 0; i < n_components; ++i)
+          for (unsigned int k = 0; k < n_modes; ++k)
+            {
+              double sum = 0;
+              for (unsigned int q = 0; q < n_q; ++q)
+                sum += weights[q] * basis[q * max_modes + k] *
+                       f.value(Point<1>(x_left[c] + h[c] * points[q]), i);
+              dst(index(c, i, k)) = sum;
+            }
+    }
+
+    double
+    max_speed_over_h(const LinearAlgebra::distributed::Vector<double> &u,
+                     const double                                      min_speed = 0.) const
+    {
+      double result = 0;
+      for (unsigned int c = 0; c < n_cells; ++c)
+        for (unsigned int q = 0; q < n_q; ++q)
+          result = std::max(result, std::max(phys.max_wave_speed(state_at(u, c, q), coefficients[c]),
+                                             min_speed) /
+                                      h[c]);
+      return result;
+    }
+
+    std::array<double, n_components>
+    integrals(const LinearAlgebra::distributed::Vector<double> &u) const
+    {
+      // the orthonormal L_0 = 1 integrates to 1, every other mode to 0
+      std::array<double, n_components> sums{};
+      for (unsigned int c = 0; c < n_cells; ++c)
+        for (unsigned int i = 0; i < n_components; ++i)
+          sums[i] += h[c] * u(index(c, i, 0));
+      return sums;
+    }
+
+    double
+    integrate(const LinearAlgebra::distributed::Vector<double> &u,
+              const std::function<double(const State<double> &, const Coefficients<double> &)>
+                &density) const
+    {
+      double sum = 0;
+      for (unsigned int c = 0; c < n_cells; ++c)
+        for (unsigned int q = 0; q < n_q; ++q)
+          sum += h[c] * weights[q] * density(state_at(u, c, q), coefficients[c]);
+      return sum;
+    }
+
+    std::array<std::array<double, 3>, n_components>
+    errors(const LinearAlgebra::distributed::Vector<double> &u, const Function<1> &exact) const
+    {
+      std::array<std::array<double, 3>, n_components> e{};
+      for (unsigned int c = 0; c < n_cells; ++c)
+        for (unsigned int q = 0; q < n_q; ++q)
+          {
+            const auto     U = state_at(u, c, q);
+            const Point<1> x(x_left[c] + h[c] * points[q]);
+            for (unsigned int i = 0; i < n_components; ++i)
+              {
+                const double diff = std::abs(U[i] - exact.value(x, i));
+                e[i][0] += h[c] * weights[q] * diff;
+                e[i][1] += h[c] * weights[q] * diff * diff;
+                e[i][2] = std::max(e[i][2], diff);
+              }
+          }
+      for (auto &ei : e)
+        ei[1] = std::sqrt(ei[1]);
+      return e;
+    }
+
+    AdmissibilityReport
+    check_admissibility(const LinearAlgebra::distributed::Vector<double> &u) const
+    {
+      AdmissibilityReport report;
+      for (unsigned int c = 0; c < n_cells; ++c)
+        for (unsigned int q = 0; q < n_q; ++q)
+          {
+            const auto U = state_at(u, c, q);
+            if (!admissible(phys, U, coefficients[c]))
+              {
+                report.ok          = false;
+                report.reason      = phys.admissibility_violation(U, coefficients[c]);
+                report.position[0] = x_left[c] + h[c] * points[q];
+                report.state.assign(U.begin_raw(), U.end_raw());
+                return report;
+              }
+          }
+      return report;
+    }
+
+    const Physics &
+    physics() const
+    {
+      return phys;
+    }
+
+  private:
+    static constexpr unsigned int max_modes = 5;
+
+    std::size_t
+    index(const unsigned int c, const unsigned int i, const unsigned int k) const
+    {
+      return c * dofs_per_cell + i * comp_stride + k * mode_stride;
+    }
+
+    State<double>
+    state_at(const LinearAlgebra::distributed::Vector<double> &u, const unsigned int c,
+             const unsigned int q) const
+    {
+      State<double> U;
+      const double *x = u.begin() + c * dofs_per_cell;
+      const double *B = &basis[q * max_modes];
+      for (unsigned int i = 0; i < n_components; ++i)
+        for (unsigned int k = 0; k < n_modes; ++k)
+          U[i] += x[i * comp_stride + k * mode_stride] * B[k];
+      return U;
+    }
+
+    const BoundaryCondition<1> *
+    find_bc(const types::boundary_id id) const
+    {
+      const auto it = boundary.find(id);
+      AssertThrow(it != boundary.end(),
+                  ExcMessage("no boundary condition for boundary id " + std::to_string(id)));
+      return &it->second;
+    }
+
+    /// F*.n at a boundary face with interior trace U_m and outward normal n
+    State<double>
+    boundary_flux(const BoundaryCondition<1> &bc, const State<double> &U_m, const double n,
+                  const double x, const double t, const Coefficients<double> &a) const
+    {
+      State<double> g;
+      if (bc.data)
+        {
+          bc.data->set_time(t);
+          for (unsigned int i = 0; i < n_components; ++i)
+            g[i] = bc.data->value(Point<1>(x), i);
+        }
+      Tensor<1, 1> normal;
+      normal[0]               = n;
+      const State<double> U_p = phys.boundary_state(bc.kind, U_m, normal, g, a);
+      return phys.numerical_flux(flux_type, U_m, U_p, normal, a, a);
+    }
+
+    template <unsigned int nm>
+    void
+    apply_impl(const double t, const double *src, double *dst) const
+    {
+      constexpr unsigned int nc = n_components;
+      Tensor<1, 1>           right;
+      right[0] = 1.;
+      // traces of cell c at its left (xi = 0) and right (xi = 1) ends
+      auto traces = [&](const unsigned int c, State<double> &U0, State<double> &U1) {
+        const double *u = src + c * dofs_per_cell;
+        for (unsigned int i = 0; i < nc; ++i)
+          {
+            double s0 = 0, s1 = 0;
+            for (unsigned int k = 0; k < nm; ++k)
+              {
+                const double x = u[i * comp_stride + k * mode_stride];
+                s0 += x * at_0[k];
+                s1 += x * at_1[k];
+              }
+            U0[i] = s0;
+            U1[i] = s1;
+          }
+      };
+
+      // the flux through the left face of cell c (F*.n with n = +1, from
+      // cell c-1 into c), kept from one cell to the next
+      State<double> U0, U1, U1_previous, F_left;
+      if (periodic)
+        {
+          traces(n_cells - 1, U0, U1_previous);
+          traces(0, U0, U1);
+          F_left = phys.numerical_flux(flux_type, U1_previous, U0, right,
+                                       coefficients[n_cells - 1], coefficients[0]);
+        }
+      else
+        {
+          traces(0, U0, U1);
+          F_left = -boundary_flux(*left_bc, U0, -1., x_left[0], t, coefficients[0]);
+        }
+
+      for (unsigned int c = 0; c < n_cells; ++c)
+        {
+          const double *u = src + c * dofs_per_cell;
+          double       *r = dst + c * dofs_per_cell;
+          const auto   &a = coefficients[c];
+          double        res[nc][nm] = {};
+
+          // volume: int F(u_h) phi_k' dx + int S(u_h) phi_k dx
+          for (unsigned int q = 0; q < n_q; ++q)
+            {
+              const double *B = &basis[q * max_modes];
+              const double *D = &derivative[q * max_modes];
+              State<double> U;
+              for (unsigned int i = 0; i < nc; ++i)
+                {
+                  double s = 0;
+                  for (unsigned int k = 0; k < nm; ++k)
+                    s += u[i * comp_stride + k * mode_stride] * B[k];
+                  U[i] = s;
+                }
+              const auto F = phys.flux(U, a);
+              for (unsigned int i = 0; i < nc; ++i)
+                {
+                  const double wf = weights[q] * F[i][0];
+                  for (unsigned int k = 0; k < nm; ++k)
+                    res[i][k] += wf * D[k];
+                }
+              if constexpr (Physics::has_source_term)
+                {
+                  const auto S = phys.source(U, Point<1>(x_left[c] + h[c] * points[q]), t, a);
+                  for (unsigned int i = 0; i < nc; ++i)
+                    {
+                      const double ws = h[c] * weights[q] * S[i];
+                      for (unsigned int k = 0; k < nm; ++k)
+                        res[i][k] += ws * B[k];
+                    }
+                }
+            }
+
+          // the right face: with the next cell, the periodic partner or the
+          // boundary (U0, U1 hold the traces of cell c, V0, V1 those of c + 1)
+          State<double> F_right, V0, V1;
+          if (c + 1 < n_cells)
+            {
+              traces(c + 1, V0, V1);
+              F_right = phys.numerical_flux(flux_type, U1, V0, right, a, coefficients[c + 1]);
+            }
+          else if (periodic)
+            {
+              traces(0, V0, V1);
+              F_right = phys.numerical_flux(flux_type, U1, V0, right, a, coefficients[0]);
+            }
+          else
+            F_right = boundary_flux(*right_bc, U1, 1., x_left[c] + h[c], t, a);
+
+          // - [F* phi_k] over the cell: outward normal +1 on the right, -1 on the left
+          const double inv_h = 1. / h[c];
+          for (unsigned int i = 0; i < nc; ++i)
+            for (unsigned int k = 0; k < nm; ++k)
+              r[i * comp_stride + k * mode_stride] =
+                (res[i][k] - F_right[i] * at_1[k] + F_left[i] * at_0[k]) * inv_h;
+          F_left = F_right;
+          U0     = V0;
+          U1     = V1;
+        }
+    }
+
+    Physics                          phys;
+    NumericalFlux                    flux_type;
+    BoundaryMap<1>                   boundary;
+    ModalLayout<1>                   layout;
+    unsigned int                     n_cells = 0, n_modes = 1, n_q = 1, dofs_per_cell = 1;
+    std::size_t                      n_dofs = 0, comp_stride = 1, mode_stride = 1;
+    bool                             periodic = false;
+    const BoundaryCondition<1>      *left_bc = nullptr, *right_bc = nullptr;
+    std::vector<double>              h, x_left, weights, points, basis, derivative;
+    std::array<double, max_modes>    at_0{}, at_1{};
+    std::vector<Coefficients<double>> coefficients;
+  };
+} // namespace granular_dg::dg
