@@ -52,7 +52,7 @@ def main():
     fig, ax = plt.subplots(figsize=(6.5, 4.5))
     for degree in range(4):
         sel = [r for r in rows if int(float(r["degree"])) == degree]
-        ax.loglog([float(r["time_loop_s"]) for r in sel], [float(r["l1_error"]) for r in sel],
+        ax.loglog([float(r["time_loop_cpu_s"]) for r in sel], [float(r["l1_error"]) for r in sel],
                   "o-", label="P%d" % degree)
     ax.set_xlabel("CPU time of the time loop [s]")
     ax.set_ylabel("L1 error (u and v) at t = 4")

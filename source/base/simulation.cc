@@ -192,7 +192,9 @@ namespace granular_dg
     s.add("final_time", r.final_time);
     s.add("wall_time_s", r.wall_time_s);
     s.add("time_loop_s", r.time_loop_s);
+    s.add("time_loop_cpu_s", r.time_loop_cpu_s);
     s.add("dof_updates_per_s", r.dof_updates_per_s);
+    s.add("dof_updates_per_cpu_s_per_rank", r.dof_updates_per_cpu_s_per_rank);
     s.add("n_mpi_ranks", static_cast<long long>(Utilities::MPI::n_mpi_processes(MPI_COMM_WORLD)));
     s.add("status", r.status);
     if (!r.errors.empty())

@@ -142,7 +142,9 @@ namespace granular_dg
     unsigned long                    n_steps = 0;
     double                           final_time = 0;
     double                           wall_time_s = 0;
-    double                           time_loop_s = 0;
+    double                           time_loop_s = 0;     ///< wall time of the steps
+    double                           time_loop_cpu_s = 0; ///< CPU time of the steps (rank 0)
+    double                           dof_updates_per_cpu_s_per_rank = 0;
     double                           dof_updates_per_s = 0;
     unsigned long                    n_dofs = 0, n_cells = 0;
     double                           h_min = 0;

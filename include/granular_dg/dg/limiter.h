@@ -59,6 +59,11 @@ namespace granular_dg::dg
     void
     reinit(const DoFHandler<dim> &dof_handler, const VectorType &vector);
 
+    /// Index tables by global DoF index: for serial runs, where local and
+    /// global indices coincide.
+    void
+    reinit(const DoFHandler<dim> &dof_handler);
+
     /// Limit in place at time t (for boundary data); returns the number of
     /// troubled (modified) cells on this rank.
     unsigned int

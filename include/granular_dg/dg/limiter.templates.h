@@ -33,8 +33,15 @@ namespace granular_dg::dg
   ModalLimiter<dim, Physics>::reinit(const DoFHandler<dim> &dof_handler,
                                      const VectorType      &vector)
   {
-    cells.reinit(dof_handler);
+    reinit(dof_handler);
     cells.localize(*vector.get_partitioner());
+  }
+
+  template <int dim, typename Physics>
+  void
+  ModalLimiter<dim, Physics>::reinit(const DoFHandler<dim> &dof_handler)
+  {
+    cells.reinit(dof_handler);
     troubled.assign(cells.n_owned(), 0);
     coefficients.resize(cells.n_owned());
     for (unsigned int i = 0; i < cells.n_owned(); ++i)

@@ -57,12 +57,21 @@ namespace granular_dg::column
     class ColumnHooks : public SceneHooks<1>
     {
     public:
-      ColumnHooks(const System &system, const ColumnParameters &prm, const double final_time)
+      /// directory empty: write nothing (convergence studies)
+      ColumnHooks(const System &system, const ColumnParameters &prm, const double final_time,
+                  const std::string &directory)
         : system(system)
         , prm(prm)
         , sigma_b(system.stress(prm.u_b))
         , sample_dt(prm.sample_dt > 0 ? prm.sample_dt : final_time / 400.)
+        , directory(directory)
       {}
+
+      ~ColumnHooks() override
+      {
+        if (sgn_map_file)
+          std::fclose(sgn_map_file);
+      }
 
       void
       initialize(const DoFHandler<1> &, const Mapping<1> &,
@@ -89,6 +98,26 @@ namespace granular_dg::column
         for (unsigned int i = 0; i < q.size(); ++i)
           for (unsigned int k = 0; k <= cell_layout.degree(); ++k)
             q_basis.push_back(Polynomials::Legendre(k).value(q.point(i)[0]));
+
+        // written row by row, so that a long run can be watched (and a failed
+        // one keeps its history)
+        if (directory.empty())
+          return;
+        history_file.open(directory + "/history.csv",
+                          {"time", "max_velocity", "front_position", "front_strain",
+                           "front_velocity", "stop_front", "stuck_cells", "max_stuck_multiplier",
+                           "energy", "friction_work", "wall_work", "probe_strain",
+                           "critical_loadings"});
+        if (prm.write_sgn_map)
+          {
+            sgn_map_file = std::fopen((directory + "/sgn-map.csv").c_str(), "w");
+            std::fprintf(sgn_map_file,
+                         "# sgn(v) per cell (columns: cell centres z), one row per sample time\n");
+            std::fprintf(sgn_map_file, "time");
+            for (const double z : center)
+              std::fprintf(sgn_map_file, ",%.8g", z);
+            std::fprintf(sgn_map_file, "\n");
+          }
       }
 
       void
@@ -233,8 +262,8 @@ namespace granular_dg::column
           }
         rankine_hugoniot(diagnostics);
         stationary_comparison(U, diagnostics, directory, write_files);
-        if (write_files)
-          write_history(directory);
+        if (sgn_map_file)
+          std::fflush(sgn_map_file);
       }
 
     private:
@@ -375,18 +404,19 @@ namespace granular_dg::column
                            double(f.n_stuck), f.max_multiplier, energy, friction_work,
                            wall_work, mode_value(U, probe, 0, at_center),
                            double(critical_loadings)});
-        if (prm.write_sgn_map)
+        if (history_file.is_open())
+          history_file.row(history.back());
+        if (sgn_map_file)
           {
-            std::vector<float> row(layout->n_owned());
-            const bool         implicit =
-              system.parameters().friction == FrictionTreatment::projection;
-            for (unsigned int c = 0; c < row.size(); ++c)
+            const bool implicit = system.parameters().friction == FrictionTreatment::projection;
+            std::fprintf(sgn_map_file, "%.10g", t);
+            for (unsigned int c = 0; c < layout->n_owned(); ++c)
               {
                 const double v0 = U.local_element(layout->index(c, 1, 0));
-                row[c] = implicit ? projection->multipliers()[c] : (v0 > 0) - (v0 < 0);
+                std::fprintf(sgn_map_file, ",%.5g",
+                             implicit ? projection->multipliers()[c] : double((v0 > 0) - (v0 < 0)));
               }
-            sgn_map.push_back(std::move(row));
-            sgn_map_times.push_back(t);
+            std::fprintf(sgn_map_file, "\n");
           }
       }
 
@@ -468,40 +498,6 @@ namespace granular_dg::column
         diagnostics.add("auxiliary_l2_difference", std::sqrt(l2_a));
       }
 
-      void
-      write_history(const std::string &directory) const
-      {
-        {
-          std::ofstream out(directory + "/history.csv");
-          out << "time,max_velocity,front_position,front_strain,front_velocity,stop_front,"
-                 "stuck_cells,max_stuck_multiplier,energy,friction_work,wall_work,"
-                 "probe_strain,critical_loadings\n";
-          for (const auto &row : history)
-            {
-              for (unsigned int i = 0; i < row.size(); ++i)
-                out << (i ? "," : "") << format_number(row[i]);
-              out << '\n';
-            }
-        }
-        if (!prm.write_sgn_map)
-          return;
-        // one row per sample: time, then sgn(v) (the friction multiplier) per cell
-        std::FILE *out = std::fopen((directory + "/sgn-map.csv").c_str(), "w");
-        std::fprintf(out, "# sgn(v) per cell (columns: cell centres z), one row per sample time\n");
-        std::fprintf(out, "time");
-        for (const double z : center)
-          std::fprintf(out, ",%.8g", z);
-        std::fprintf(out, "\n");
-        for (unsigned int r = 0; r < sgn_map.size(); ++r)
-          {
-            std::fprintf(out, "%.10g", sgn_map_times[r]);
-            for (const float x : sgn_map[r])
-              std::fprintf(out, ",%.5g", x);
-            std::fprintf(out, "\n");
-          }
-        std::fclose(out);
-      }
-
       const System           system;
       const ColumnParameters prm;
       const double           sigma_b, sample_dt;
@@ -519,10 +515,11 @@ namespace granular_dg::column
       double first_critical_time = -1, first_critical_position = -1, last_critical_time = -1;
       double friction_work = 0, wall_work = 0;
 
+      const std::string                directory;
       double                           next_sample = 0;
       std::vector<std::vector<double>> history;
-      std::vector<std::vector<float>>  sgn_map;
-      std::vector<double>              sgn_map_times;
+      CsvWriter                        history_file;
+      std::FILE                       *sgn_map_file = nullptr;
     };
 
     void
@@ -651,7 +648,8 @@ namespace granular_dg::column
       scene.initial     = std::make_shared<Functions::ZeroFunction<1>>(2);
       if (p.closed_form)
         scene.exact = std::make_shared<LinearColumnFunction>(p.u_b);
-      scene.hooks = std::make_shared<ColumnHooks>(scene.physics, p, common.final_time);
+      scene.hooks = std::make_shared<ColumnHooks>(scene.physics, p, common.final_time,
+                                                  common.convergence ? "" : common.directory);
       // the paper's time step: c dt/dx <= CFL with c = sqrt(-sigma'(u*)), u* the
       // largest strain, here the wall strain
       scene.min_wave_speed = scene.physics.sound_speed(p.u_b);
