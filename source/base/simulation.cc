@@ -21,7 +21,8 @@ namespace granular_dg
     const EnumNames<dg::LimiterType> limiter_names(
       {{dg::LimiterType::none, "none"},
        {dg::LimiterType::componentwise, "componentwise"},
-       {dg::LimiterType::characteristic, "characteristic"}});
+       {dg::LimiterType::characteristic, "characteristic"},
+       {dg::LimiterType::flux_variables, "flux_variables"}});
 
     std::vector<double>
     parse_doubles(const std::string &text, const std::string &parameter)
@@ -74,8 +75,10 @@ namespace granular_dg
     prm.enter_subsection("Limiter");
     prm.declare_entry("scheme", "none", limiter_names.pattern(),
                       "TVB minmod limiter on the Legendre modes after every stage: "
-                      "none, componentwise (conserved variables) or characteristic "
-                      "(eigenvectors of the flux Jacobian at the cell average).");
+                      "none, componentwise (conserved variables), characteristic "
+                      "(eigenvectors of the flux Jacobian at the cell average) or "
+                      "flux_variables (variables continuous across material interfaces, "
+                      "layered elasticity: stress and velocity).");
     prm.declare_entry("TVB constant", "0", Patterns::Double(0),
                       "M of the TVB minmod: slopes with |slope| <= M h^2 are not "
                       "limited (0 = TVD minmod).");
@@ -97,6 +100,11 @@ namespace granular_dg
                       "Sample points per cell in the 1D profile-NNNN.csv, equally "
                       "spaced with both end points (1: the cell centre; 0: degree+1, "
                       "at least 2).");
+    prm.declare_entry("write modes", "false", Patterns::Bool(),
+                      "1D: also write modes-NNNN.csv, the Legendre coefficients of every "
+                      "cell (x_left, h, then per component the modes 0..p): the exact "
+                      "discrete solution, usable as a reference solution of another run "
+                      "(Exact solution/reference file of the scenes that offer it).");
     prm.declare_entry("write vtu", "true", Patterns::Bool(),
                       "Write solution-NNNN.vtu snapshots and solution.pvd.");
     prm.declare_entry("progress interval", "5", Patterns::Double(0),
@@ -144,6 +152,7 @@ namespace granular_dg
     output_interval   = prm.get_double("output interval");
     profile_points    = prm.get_integer("profile points per cell");
     write_vtu         = prm.get_bool("write vtu");
+    write_modes       = prm.get_bool("write modes");
     progress_interval = prm.get_double("progress interval");
     prm.leave_subsection();
     for (const double t : output_times)

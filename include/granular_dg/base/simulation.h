@@ -43,6 +43,7 @@ namespace granular_dg
     std::vector<double> output_times;
     double              output_interval    = 0.;
     unsigned int        profile_points     = 0;
+    bool                write_modes        = false;
     bool                write_vtu          = true;
     double              progress_interval  = 5.;
 
@@ -133,6 +134,11 @@ namespace granular_dg
     double                               min_wave_speed = 0.;
     /// the name of the evolution variable in messages ("t"; the hopper: "tau")
     std::string                          time_name = "t";
+    /// where the run starts: time and, optionally, the state itself (a vector
+    /// of the same discretisation, e.g. the final state of an earlier run,
+    /// RunResult::final_solution); without it the initial Function is projected
+    double                                 start_time = 0.;
+    std::shared_ptr<const dg::VectorType>  initial_vector;
   };
 
   /// The outcome of one run, for summary.json and the convergence table.
@@ -152,6 +158,8 @@ namespace granular_dg
     std::vector<std::array<double, 3>> errors;
     double                           l2_error = -1; ///< all components
     double                           l1_error = -1; ///< sum over the components
+    /// the state at the end (the last good one of a failed run)
+    std::shared_ptr<dg::VectorType>  final_solution;
     JsonObject                       diagnostics;
   };
 

@@ -85,12 +85,13 @@ namespace granular_dg
     public:
       SnapshotWriter(const std::string &directory, const Physics &physics,
                      const unsigned int degree, const unsigned int profile_points,
-                     const bool write_vtu)
+                     const bool write_vtu, const bool write_modes)
         : directory(directory)
         , physics(physics)
         , degree(degree)
         , profile_points(profile_points > 0 ? profile_points : std::max(2u, degree + 1))
         , write_vtu(write_vtu)
+        , write_modes(write_modes)
       {}
 
       /// Returns the name of the VTU/PVTU file written (empty if none).
@@ -104,7 +105,11 @@ namespace granular_dg
         if (write_vtu)
           name = write_vtu_file(dof_handler, mapping, solution, time, index);
         if constexpr (dim == 1)
-          write_profile(dof_handler, mapping, solution, time, index);
+          {
+            write_profile(dof_handler, mapping, solution, time, index);
+            if (write_modes)
+              write_mode_table(dof_handler, solution, time, index);
+          }
         solution.zero_out_ghost_values();
         if (!name.empty())
           {
@@ -205,17 +210,41 @@ namespace granular_dg
           }
       }
 
+      /// modes-NNNN.csv: x_left, h and the Legendre modes of every cell
+      void
+      write_mode_table(const DoFHandler<dim> &dof_handler, const dg::VectorType &solution,
+                       const double time, const unsigned int index)
+      {
+        dg::ModalLayout<dim> layout;
+        layout.reinit(dof_handler);
+        std::vector<std::string> header{"x_left", "h"};
+        for (const auto &n : Physics::component_names())
+          for (unsigned int k = 0; k < layout.n_modes(); ++k)
+            header.push_back(n + "_" + std::to_string(k));
+        CsvWriter csv;
+        csv.open(directory + "/" + snapshot_name("modes-", index, ".csv"), header,
+                 "time = " + format_number(time));
+        for (unsigned int c = 0; c < layout.n_owned(); ++c)
+          {
+            std::vector<double> row{layout.cell(c)->vertex(0)[0], layout.extent(c, 0)};
+            for (unsigned int i = 0; i < Physics::n_components; ++i)
+              for (unsigned int k = 0; k < layout.n_modes(); ++k)
+                row.push_back(solution(layout.index(c, i, k)));
+            csv.row(row);
+          }
+      }
+
       const std::string directory;
       const Physics     physics;
       const unsigned int degree, profile_points;
-      const bool        write_vtu;
+      const bool        write_vtu, write_modes;
       std::vector<std::pair<double, std::string>> records;
     };
 
     /// The output times of a run: the list, or multiples of the interval,
     /// always ending with the final time.
     inline std::vector<double>
-    output_schedule(const CommonParameters &p)
+    output_schedule(const CommonParameters &p, const double start_time)
     {
       std::vector<double> times;
       if (!p.output_times.empty())
@@ -223,6 +252,11 @@ namespace granular_dg
       else if (p.output_interval > 0)
         for (unsigned int k = 1; k * p.output_interval < p.final_time * (1 - 1e-12); ++k)
           times.push_back(k * p.output_interval);
+      times.erase(std::remove_if(times.begin(), times.end(),
+                                 [&](const double t) {
+                                   return t <= start_time * (1 + 1e-12);
+                                 }),
+                  times.end());
       times.push_back(p.final_time);
       std::sort(times.begin(), times.end());
       times.erase(std::unique(times.begin(), times.end(),
@@ -277,9 +311,18 @@ namespace granular_dg
     SceneHooks<dim> no_hooks;
     SceneHooks<dim> &hooks = scene.hooks ? *scene.hooks : no_hooks;
     hooks.initialize(dof_handler, mapping, limiter.layout());
-    scene.initial->set_time(0.);
-    op.project(*scene.initial, solution);
-    limiter.apply(solution, 0.);
+    if (scene.initial_vector)
+      {
+        AssertThrow(scene.initial_vector->size() == solution.size(),
+                    ExcMessage("the initial vector belongs to another discretisation"));
+        solution.copy_locally_owned_data_from(*scene.initial_vector);
+      }
+    else
+      {
+        scene.initial->set_time(scene.start_time);
+        op.project(*scene.initial, solution);
+        limiter.apply(solution, scene.start_time);
+      }
     last_good = solution;
 
     RunResult result;
@@ -293,9 +336,10 @@ namespace granular_dg
     timer_storage.emplace(comm, std::cout, TimerOutput::never, TimerOutput::wall_times);
     TimerOutput &timer = *timer_storage;
 
-    const auto output_times = internal::output_schedule(params);
-    internal::SnapshotWriter<dim, Physics> snapshots(
-      params.directory, scene.physics, degree, params.profile_points, params.write_vtu);
+    const auto output_times = internal::output_schedule(params, scene.start_time);
+    internal::SnapshotWriter<dim, Physics> snapshots(params.directory, scene.physics, degree,
+                                                     params.profile_points, params.write_vtu,
+                                                     params.write_modes);
 
     const auto names = Physics::component_names();
     CsvWriter  timeseries;
@@ -317,7 +361,7 @@ namespace granular_dg
         timeseries.open(params.directory + "/timeseries.csv", header);
       }
 
-    double        t = 0., dt = 0.;
+    double        t = scene.start_time, dt = 0.;
     unsigned long step = 0;
     unsigned int  troubled = 0;
     auto energy = [&](const Tensor<1, Physics::n_components> &U,
@@ -374,7 +418,8 @@ namespace granular_dg
                 << ", timeseries.csv, summary.json)" << std::endl;
 
     record();
-    Progress progress(0., params.final_time, write_files ? params.progress_interval : 0.);
+    Progress progress(scene.start_time, params.final_time,
+                      write_files ? params.progress_interval : 0.);
     // accumulates wall and CPU time of the steps alone (no output, no diagnostics)
     Timer loop_timer;
     loop_timer.stop();
@@ -472,6 +517,7 @@ namespace granular_dg
         throw;
       }
 
+    result.final_solution = std::make_shared<dg::VectorType>(solution);
     result.n_steps     = step;
     result.final_time  = t;
     result.time_loop_s     = loop_timer.wall_time();

@@ -18,7 +18,8 @@ namespace granular_dg::dg
   {
     none,
     componentwise,
-    characteristic
+    characteristic,
+    flux_variables
   };
 
   /**
@@ -32,6 +33,15 @@ namespace granular_dg::dg
    * transformed with the left eigenvectors of the flux Jacobian in direction
    * d at the cell average (with the cell's coefficients), limited field by
    * field, and transformed back.
+   *
+   * In flux_variables mode the limiter works on variables W(U, a) that the
+   * physics names (Physics::limiting_variables(U, a) and its Jacobian
+   * limiting_jacobian(U, a)): for layered elasticity the stress and the
+   * velocity, which are continuous across material interfaces while the
+   * conserved strain and momentum jump there. The neighbour differences are
+   * W(avg_nb, a_nb) - W(avg, a) (each cell with its own material), the slopes
+   * are mapped with the Jacobian at the cell average, and the limited slopes
+   * mapped back.
    *
    * At a boundary face the neighbour average is the exterior state the
    * physics builds from the cell average (boundary_state() with the data at
@@ -48,12 +58,7 @@ namespace granular_dg::dg
     using VectorType = LinearAlgebra::distributed::Vector<double>;
 
     ModalLimiter(const Physics &physics, LimiterType type, double tvb_M,
-                 BoundaryMap<dim> boundary = {})
-      : physics(physics)
-      , type(type)
-      , M(tvb_M)
-      , boundary(std::move(boundary))
-    {}
+                 BoundaryMap<dim> boundary = {});
 
     /// Index tables for the vectors of the run (their partitioner).
     void

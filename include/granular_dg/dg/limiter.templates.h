@@ -2,7 +2,12 @@
 
 #include <granular_dg/dg/limiter.h>
 
+#include <granular_dg/base/errors.h>
+
 #include <cmath>
+#include <string>
+#include <type_traits>
+#include <utility>
 
 namespace granular_dg::dg
 {
@@ -28,6 +33,37 @@ namespace granular_dg::dg
     }
   } // namespace internal
 
+  namespace internal
+  {
+    /// Whether the Physics names limiting variables (flux_variables mode).
+    template <typename Physics, typename = void>
+    struct has_limiting_variables : std::false_type
+    {};
+    template <typename Physics>
+    struct has_limiting_variables<
+      Physics,
+      std::void_t<decltype(std::declval<const Physics &>().limiting_jacobian(
+        Tensor<1, Physics::n_components>(),
+        std::declval<const typename Physics::template Coefficients<double> &>()))>>
+      : std::true_type
+    {};
+  } // namespace internal
+
+  template <int dim, typename Physics>
+  ModalLimiter<dim, Physics>::ModalLimiter(const Physics &physics, const LimiterType type,
+                                           const double tvb_M, BoundaryMap<dim> boundary)
+    : physics(physics)
+    , type(type)
+    , M(tvb_M)
+    , boundary(std::move(boundary))
+  {
+    require(type != LimiterType::flux_variables ||
+              internal::has_limiting_variables<Physics>::value,
+            "Limiter/scheme", "flux_variables",
+            std::string("none, componentwise or characteristic: ") + Physics::name +
+              " names no flux variables");
+  }
+
   template <int dim, typename Physics>
   void
   ModalLimiter<dim, Physics>::reinit(const DoFHandler<dim> &dof_handler,
@@ -43,8 +79,9 @@ namespace granular_dg::dg
   {
     cells.reinit(dof_handler);
     troubled.assign(cells.n_owned(), 0);
-    coefficients.resize(cells.n_owned());
-    for (unsigned int i = 0; i < cells.n_owned(); ++i)
+    // owned cells and the ghost neighbours (flux_variables needs theirs)
+    coefficients.resize(cells.n_cells());
+    for (unsigned int i = 0; i < cells.n_cells(); ++i)
       coefficients[i] = physics.coefficients(cells.cell(i)->material_id());
   }
 
@@ -81,12 +118,16 @@ namespace granular_dg::dg
         const State avg = average(i);
         const auto &a   = coefficients[i];
 
-        // the neighbour average across face f; false at an outflow boundary
+        // the neighbour average across face f (and the neighbour's
+        // coefficients); false at an outflow boundary
+        const std::array<double, Physics::n_coefficients> *a_nb = &a;
         auto neighbor_average = [&](const unsigned int f, State &result) {
           const int nb = cells.neighbor(i, f);
+          a_nb         = &a;
           if (nb >= 0)
             {
               result = average(nb);
+              a_nb   = &coefficients[nb];
               return true;
             }
           const auto bc = boundary.find(cells.boundary_id(i, f));
@@ -115,7 +156,9 @@ namespace granular_dg::dg
             const unsigned int stride = cells.stride(d);
             State              avg_m, avg_p, jump_p, jump_m, slope;
             const bool         has_m = neighbor_average(2 * d, avg_m);
+            const auto        *a_m   = a_nb;
             const bool         has_p = neighbor_average(2 * d + 1, avg_p);
+            const auto        *a_p   = a_nb;
             for (unsigned int c = 0; c < n_components; ++c)
               {
                 for (unsigned int k = 1; k < n_modes_1d; ++k)
@@ -127,6 +170,20 @@ namespace granular_dg::dg
                 slope[c] = value(i, c, stride) * cells.value_at_1(1);
               }
             State dp = has_p ? avg_p - avg : State(), dm = has_m ? avg - avg_m : State();
+            if constexpr (internal::has_limiting_variables<Physics>::value)
+              if (type == LimiterType::flux_variables)
+                {
+                  const State W = physics.limiting_variables(avg, a);
+                  const auto  J = physics.limiting_jacobian(avg, a);
+                  R[d]          = invert(J);
+                  if (has_p)
+                    dp = physics.limiting_variables(avg_p, *a_p) - W;
+                  if (has_m)
+                    dm = W - physics.limiting_variables(avg_m, *a_m);
+                  jump_p = J * jump_p;
+                  jump_m = J * jump_m;
+                  slope  = J * slope;
+                }
             if (type == LimiterType::characteristic)
               {
                 Tensor<1, dim> n;
@@ -159,7 +216,7 @@ namespace granular_dg::dg
         for (int d = 0; d < dim; ++d)
           {
             State s = new_slope[d];
-            if (type == LimiterType::characteristic)
+            if (type == LimiterType::characteristic || type == LimiterType::flux_variables)
               s = R[d] * s;
             for (unsigned int c = 0; c < n_components; ++c)
               value(i, c, cells.stride(d)) = s[c] / cells.value_at_1(1);

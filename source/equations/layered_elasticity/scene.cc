@@ -1,19 +1,31 @@
 /**
- * The `elasticity` scene: nonlinear elasticity (system.h) in a homogeneous
- * medium on an interval (1D) or a rectangle (2D), with boundary conditions by
- * side (periodic, outflow, moving wall, traction, Dirichlet), initial data and
- * an optional exact solution as expressions.
+ * The `layered_strip` scene: nonlinear elasticity (system.h) in a layered
+ * medium on an interval (1D) or a rectangle (2D) whose cell faces align with
+ * the material interfaces (layers of width l of two materials A and B, vertical
+ * or horizontal strips in 2D; layer width 0 is a homogeneous medium of
+ * material A). Boundary conditions by side (periodic, outflow, moving wall,
+ * traction, Dirichlet), optionally switched to periodic in x at a given time
+ * (a second run started from the first one's final state), initial data as
+ * strain or stress expressions, an exact or reference solution for errors,
+ * interface diagnostics and an optional positivity scaling of the strain.
  */
 
+#include <deal.II/base/polynomial.h>
+#include <deal.II/base/quadrature_lib.h>
 #include <deal.II/distributed/tria.h>
 #include <deal.II/grid/grid_generator.h>
 #include <deal.II/grid/grid_tools.h>
 
 #include <granular_dg/base/parameters.h>
+#include <granular_dg/base/reference_solution.h>
 #include <granular_dg/base/simulation.h>
 #include <granular_dg/equations/layered_elasticity/system.h>
 #include <granular_dg/scenes/scenes.h>
 
+#include <cmath>
+#include <algorithm>
+#include <functional>
+#include <limits>
 #include <iostream>
 
 namespace granular_dg::elasticity
@@ -39,20 +51,54 @@ namespace granular_dg::elasticity
 
     const char *side_label[] = {"left", "right", "bottom", "top"};
 
-    /// (strain, velocity) expressions -> conserved (strain, rho velocity).
+    /// The layered medium: material A (id 0) on the even layers
+    /// [origin + 2j l, origin + (2j+1) l), B (id 1) on the odd ones, along x
+    /// (vertical strips) or y (horizontal strips); l = 0: A everywhere.
+    struct Layers
+    {
+      double       width     = 0.;
+      double       origin    = 0.;
+      unsigned int direction = 0;
+      Material     A, B;
+
+      template <int dim>
+      types::material_id
+      id(const Point<dim> &p) const
+      {
+        if (width <= 0)
+          return 0;
+        const double s = (p[direction] - origin) / width;
+        return static_cast<long>(std::floor(s)) % 2 == 0 ? 0 : 1;
+      }
+
+      std::vector<Material>
+      table() const
+      {
+        return width > 0 ? std::vector<Material>{A, B} : std::vector<Material>{A};
+      }
+    };
+
+    /// (strain or stress, velocity) expressions -> conserved (strain, rho u),
+    /// with the material of the point.
     template <int dim>
     class PrimitiveToConserved : public Function<dim>
     {
     public:
-      PrimitiveToConserved(std::shared_ptr<Function<dim>> f, const double rho)
+      PrimitiveToConserved(std::shared_ptr<Function<dim>> f, const System<dim> &system,
+                           const Layers &layers, const bool stress_given)
         : Function<dim>(dim + 1)
         , f(std::move(f))
-        , rho(rho)
+        , system(system)
+        , layers(layers)
+        , stress_given(stress_given)
       {}
       double
       value(const Point<dim> &p, const unsigned int c) const override
       {
-        return (c == 0 ? 1. : rho) * f->value(p, c);
+        const auto a = system.coefficients(layers.id(p));
+        if (c > 0)
+          return a[density] * f->value(p, c);
+        return stress_given ? system.strain_of_stress(f->value(p, 0), a) : f->value(p, 0);
       }
       void
       set_time(const double t) override
@@ -63,7 +109,9 @@ namespace granular_dg::elasticity
 
     private:
       std::shared_ptr<Function<dim>> f;
-      const double                   rho;
+      const System<dim>              system;
+      const Layers                   layers;
+      const bool                     stress_given;
     };
 
     /// Boundary data in the layout System::boundary_state() expects.
@@ -71,11 +119,11 @@ namespace granular_dg::elasticity
     class BoundaryData : public Function<dim>
     {
     public:
-      BoundaryData(std::shared_ptr<Function<dim>> f, const Side side, const double rho)
+      BoundaryData(std::shared_ptr<Function<dim>> f, const Side side, const Layers &layers)
         : Function<dim>(dim + 1)
         , f(std::move(f))
         , side(side)
-        , rho(rho)
+        , layers(layers)
       {}
       double
       value(const Point<dim> &p, const unsigned int c) const override
@@ -87,7 +135,8 @@ namespace granular_dg::elasticity
             case Side::traction:
               return c == 0 ? f->value(p, 0) : 0.;
             case Side::dirichlet:
-              return (c == 0 ? 1. : rho) * f->value(p, c);
+              return (c == 0 ? 1. : (layers.id(p) == 0 ? layers.A : layers.B).rho) *
+                     f->value(p, c);
             default:
               return 0.;
           }
@@ -102,7 +151,213 @@ namespace granular_dg::elasticity
     private:
       std::shared_ptr<Function<dim>> f;
       const Side                     side;
-      const double                   rho;
+      const Layers                   layers;
+    };
+
+    /**
+     * Interface diagnostics (stress and velocity jumps across material
+     * interfaces, from the traces at the face centres), the strain range,
+     * and the Zhang-Shu positivity scaling of the strain after every stage.
+     */
+    template <int dim>
+    class LayeredHooks : public SceneHooks<dim>
+    {
+    public:
+      LayeredHooks(const System<dim> &system, const bool positivity)
+        : system(system)
+        , positivity(positivity)
+      {}
+
+      void
+      initialize(const DoFHandler<dim> &, const Mapping<dim> &,
+                 const dg::ModalLayout<dim> &cell_layout) override
+      {
+        layout                 = &cell_layout;
+        const unsigned int n1d = layout->degree() + 1;
+        // 1D Legendre values at the Gauss points (p + 2, the operator's) and
+        // at 0, 1/2 and 1
+        const QGauss<1> q(n1d + 1);
+        gauss.resize(q.size() * n1d);
+        for (unsigned int k = 0; k < n1d; ++k)
+          {
+            const Polynomials::Legendre L(k);
+            for (unsigned int i = 0; i < q.size(); ++i)
+              gauss[i * n1d + k] = L.value(q.point(i)[0]);
+            at[0].push_back(L.value(0.));
+            at[1].push_back(L.value(0.5));
+            at[2].push_back(L.value(1.));
+          }
+        n_gauss = q.size();
+      }
+
+      void
+      post_limiter(dg::VectorType &U, double) override
+      {
+        if (!positivity)
+          return;
+        // theta scales the higher strain modes so that eps >= 0 at the points
+        // the scheme uses (Zhang & Shu); the cell average (mass) is kept
+        for (unsigned int c = 0; c < layout->n_owned(); ++c)
+          {
+            const double mean = U.local_element(layout->index(c, 0, 0));
+            double       low  = min_strain_in_cell(U, c);
+            if (low >= 0. || mean <= 0.)
+              {
+                if (mean < 0.)
+                  ++negative_means;
+                continue;
+              }
+            const double theta = std::min(1., mean / (mean - low));
+            for (unsigned int m = 1; m < layout->n_modes(); ++m)
+              U.local_element(layout->index(c, 0, m)) *= theta;
+            ++scaled_cells;
+          }
+      }
+
+      std::vector<std::string>
+      timeseries_names() const override
+      {
+        return {"min_strain", "max_strain", "interface_stress_jump_max",
+                "interface_stress_jump_mean", "interface_velocity_jump_max"};
+      }
+
+      std::vector<double>
+      timeseries_values(const dg::VectorType &U, double) override
+      {
+        const auto d = diagnose(U);
+        return {d.min_strain, d.max_strain, d.stress_jump_max, d.stress_jump_mean,
+                d.velocity_jump_max};
+      }
+
+      void
+      finish(const dg::VectorType &U, double, JsonObject &diagnostics, const std::string &,
+             bool) override
+      {
+        const auto d = diagnose(U);
+        diagnostics.add("min_strain", d.min_strain);
+        diagnostics.add("max_strain", d.max_strain);
+        diagnostics.add("interface_stress_jump_max", d.stress_jump_max);
+        diagnostics.add("interface_stress_jump_mean", d.stress_jump_mean);
+        diagnostics.add("interface_velocity_jump_max", d.velocity_jump_max);
+        if (positivity)
+          {
+            const MPI_Comm comm = U.get_mpi_communicator();
+            diagnostics.add("positivity_scaled_cell_stages",
+                            static_cast<long long>(Utilities::MPI::sum(scaled_cells, comm)));
+            diagnostics.add("negative_strain_means",
+                            static_cast<long long>(Utilities::MPI::sum(negative_means, comm)));
+          }
+      }
+
+    private:
+      struct Diagnosis
+      {
+        double min_strain = 0, max_strain = 0, stress_jump_max = 0, stress_jump_mean = 0,
+               velocity_jump_max = 0;
+      };
+
+      /// value of component i of cell c at the tensor point with 1D Legendre
+      /// values v[d] in direction d
+      double
+      evaluate(const dg::VectorType &U, const unsigned int c, const unsigned int i,
+               const std::array<const double *, dim> &v) const
+      {
+        const unsigned int n1d = layout->degree() + 1;
+        double             sum = 0;
+        for (unsigned int m = 0; m < layout->n_modes(); ++m)
+          {
+            double w = 1, r = m;
+            for (int d = 0; d < dim; ++d)
+              {
+                const unsigned int k = static_cast<unsigned int>(r) % n1d;
+                r                    = std::floor(r / n1d);
+                w *= v[d][k];
+              }
+            sum += U.local_element(layout->index(c, i, m)) * w;
+          }
+        return sum;
+      }
+
+      /// min of the strain over the tensor Gauss points and the face centres
+      double
+      min_strain_in_cell(const dg::VectorType &U, const unsigned int c) const
+      {
+        const unsigned int n1d = layout->degree() + 1;
+        double             low = std::numeric_limits<double>::max();
+        std::array<const double *, dim> v;
+        const unsigned int              n_points = Utilities::pow(n_gauss, dim);
+        for (unsigned int p = 0; p < n_points; ++p)
+          {
+            unsigned int r = p;
+            for (int d = 0; d < dim; ++d, r /= n_gauss)
+              v[d] = &gauss[(r % n_gauss) * n1d];
+            low = std::min(low, evaluate(U, c, 0, v));
+          }
+        for (unsigned int f = 0; f < 2 * dim; ++f)
+          {
+            for (int d = 0; d < dim; ++d)
+              v[d] = at[1].data();
+            v[f / 2] = (f % 2 == 0 ? at[0] : at[2]).data();
+            low      = std::min(low, evaluate(U, c, 0, v));
+          }
+        return low;
+      }
+
+      Diagnosis
+      diagnose(const dg::VectorType &U) const
+      {
+        U.update_ghost_values();
+        Diagnosis          r;
+        double             low = std::numeric_limits<double>::max(), high = -low;
+        double             jump_sum = 0, count = 0;
+        for (unsigned int c = 0; c < layout->n_owned(); ++c)
+          {
+            low  = std::min(low, min_strain_in_cell(U, c));
+            high = std::max(high, U.local_element(layout->index(c, 0, 0)));
+            const auto id = layout->cell(c)->material_id();
+            const auto a  = system.coefficients(id);
+            // the interface faces on the upper side of the cell
+            for (int d = 0; d < dim; ++d)
+              {
+                const int nb = layout->neighbor(c, 2 * d + 1);
+                if (nb < 0 || layout->cell(nb)->material_id() == id)
+                  continue;
+                const auto                      a_nb = system.coefficients(layout->cell(nb)->material_id());
+                std::array<const double *, dim> here, there;
+                for (int e = 0; e < dim; ++e)
+                  here[e] = there[e] = at[1].data();
+                here[d]  = at[2].data();
+                there[d] = at[0].data();
+                const double s_jump = std::abs(system.stress(evaluate(U, c, 0, here), a) -
+                                               system.stress(evaluate(U, nb, 0, there), a_nb));
+                const double u_jump =
+                  std::abs(evaluate(U, c, 1 + d, here) / a[density] -
+                           evaluate(U, nb, 1 + d, there) / a_nb[density]);
+                r.stress_jump_max   = std::max(r.stress_jump_max, s_jump);
+                r.velocity_jump_max = std::max(r.velocity_jump_max, u_jump);
+                jump_sum += s_jump;
+                count += 1;
+              }
+          }
+        U.zero_out_ghost_values();
+        const MPI_Comm comm = U.get_mpi_communicator();
+        r.min_strain        = Utilities::MPI::min(low, comm);
+        r.max_strain        = Utilities::MPI::max(high, comm);
+        r.stress_jump_max   = Utilities::MPI::max(r.stress_jump_max, comm);
+        r.velocity_jump_max = Utilities::MPI::max(r.velocity_jump_max, comm);
+        jump_sum            = Utilities::MPI::sum(jump_sum, comm);
+        count               = Utilities::MPI::sum(count, comm);
+        r.stress_jump_mean  = count > 0 ? jump_sum / count : 0.;
+        return r;
+      }
+
+      const System<dim>           system;
+      const bool                  positivity;
+      const dg::ModalLayout<dim> *layout  = nullptr;
+      unsigned int                n_gauss = 1;
+      std::vector<double>         gauss;
+      std::array<std::vector<double>, 3> at; ///< L_k at 0, 1/2, 1
+      unsigned long long          scaled_cells = 0, negative_means = 0;
     };
 
     void
@@ -112,25 +367,44 @@ namespace granular_dg::elasticity
       prm.declare_entry("dimension", "1", Patterns::Integer(1, 2), "1 or 2.");
       prm.declare_entry("x min", "0", Patterns::Double(), "Left end of the domain.");
       prm.declare_entry("x max", "1", Patterns::Double(), "Right end of the domain.");
-      prm.declare_entry("cells x", "64", Patterns::Integer(1), "Cells in x.");
+      prm.declare_entry("cells x", "64", Patterns::Integer(1),
+                        "Cells in x; with layers across x, an integer number per layer.");
       prm.declare_entry("y min", "0", Patterns::Double(), "Bottom (2D).");
       prm.declare_entry("y max", "1", Patterns::Double(), "Top (2D).");
-      prm.declare_entry("cells y", "4", Patterns::Integer(1), "Cells in y (2D).");
+      prm.declare_entry("cells y", "4", Patterns::Integer(1),
+                        "Cells in y (2D); with horizontal layers, an integer number per layer.");
       prm.leave_subsection();
 
       prm.enter_subsection("Physics");
       prm.declare_entry("stress law", "quadratic", law_names.pattern(),
                         "quadratic: sigma = K eps + beta K^2 eps^2 (seed 001 (1.4); "
                         "linear for beta = 0); exponential: sigma = exp(K eps) - 1 (1.5).");
-      prm.declare_entry("density", "1", Patterns::Double(), "rho > 0.");
-      prm.declare_entry("modulus K", "1", Patterns::Double(), "K > 0.");
+      prm.declare_entry("density", "1", Patterns::Double(),
+                        "rho > 0 of material A (the homogeneous medium, or the even layers).");
+      prm.declare_entry("modulus K", "1", Patterns::Double(), "K > 0 of material A.");
       prm.declare_entry("beta", "0", Patterns::Double(),
-                        "Nonlinearity of the quadratic law.");
+                        "Nonlinearity of the quadratic law (both materials).");
+      prm.leave_subsection();
+
+      prm.enter_subsection("Layers");
+      prm.declare_entry("layer width", "0", Patterns::Double(0),
+                        "l >= 0: material A on [origin + 2jl, origin + (2j+1)l), B on the "
+                        "others; every interface must be a mesh face. 0: homogeneous "
+                        "(material A everywhere).");
+      prm.declare_entry("origin", "0", Patterns::Double(), "Where the first A layer starts.");
+      prm.declare_entry("orientation", "vertical", Patterns::Selection("vertical|horizontal"),
+                        "vertical: the material varies with x (strips x = const in 2D); "
+                        "horizontal: with y (2D only).");
+      prm.declare_entry("density B", "1", Patterns::Double(), "rho > 0 of material B.");
+      prm.declare_entry("modulus K B", "1", Patterns::Double(), "K > 0 of material B.");
       prm.leave_subsection();
 
       prm.enter_subsection("Initial condition");
       prm.declare_entry("strain", "0", Patterns::Anything(),
                         "eps(x[,y]) as an expression (constant pi).");
+      prm.declare_entry("stress", "", Patterns::Anything(),
+                        "sigma(x[,y]) instead of the strain (empty: use the strain); the "
+                        "strain follows from each material's law.");
       prm.declare_entry("velocity", "0", Patterns::Anything(),
                         "u(x[,y]) in 1D, 'u; v' in 2D.");
       prm.leave_subsection();
@@ -149,6 +423,19 @@ namespace granular_dg::elasticity
                             "Expressions in x[,y],t separated by ';': wall: velocity "
                             "(dim values); traction: sigma; dirichlet: strain; velocity.");
         }
+      prm.declare_entry("periodic from", "0", Patterns::Double(0),
+                        "t_p > 0: left and right become periodic at t = t_p (the run to "
+                        "t_p goes to Output/directory/before-periodic, the rest continues "
+                        "from its final state); 0: never.");
+      prm.leave_subsection();
+
+      prm.enter_subsection("Limiter");
+      prm.declare_entry("strain positivity", "false", Patterns::Bool(),
+                        "Scale the higher strain modes after every stage so that eps >= 0 "
+                        "at the Gauss points and face centres of every cell with a "
+                        "non-negative mean (Zhang-Shu). The paper's scheme keeps eps >= 0; "
+                        "the exact solutions have small tensile tails (eps < 0), so this is "
+                        "off by default.");
       prm.leave_subsection();
 
       prm.enter_subsection("Exact solution");
@@ -157,41 +444,74 @@ namespace granular_dg::elasticity
                         "errors are reported and convergence studies are possible.");
       prm.declare_entry("strain", "0", Patterns::Anything(), "eps(x[,y],t).");
       prm.declare_entry("velocity", "0", Patterns::Anything(), "u(x[,y],t) ('u; v' in 2D).");
+      prm.declare_entry("reference file", "", Patterns::Anything(),
+                        "1D: a modes-NNNN.csv of a finer run (Output/write modes = true) "
+                        "as the reference solution at the final time, instead of the "
+                        "expressions (errors in summary.json).");
       prm.leave_subsection();
+    }
+
+    Layers
+    parse_layers(ParameterHandler &prm, const int dim, Material &A)
+    {
+      Layers l;
+      prm.enter_subsection("Physics");
+      A.rho  = prm.get_double("density");
+      A.K    = prm.get_double("modulus K");
+      A.beta = prm.get_double("beta");
+      prm.leave_subsection();
+      require(A.rho > 0, "Physics/density", A.rho, "must be > 0");
+      require(A.K > 0, "Physics/modulus K", A.K, "must be > 0");
+      prm.enter_subsection("Layers");
+      l.width     = prm.get_double("layer width");
+      l.origin    = prm.get_double("origin");
+      l.direction = prm.get("orientation") == "vertical" ? 0 : 1;
+      l.A         = A;
+      l.B         = A;
+      l.B.rho     = prm.get_double("density B");
+      l.B.K       = prm.get_double("modulus K B");
+      prm.leave_subsection();
+      require(l.B.rho > 0, "Layers/density B", l.B.rho, "must be > 0");
+      require(l.B.K > 0, "Layers/modulus K B", l.B.K, "must be > 0");
+      require(dim == 2 || l.direction == 0, "Layers/orientation", "horizontal",
+              "vertical in 1D");
+      return l;
     }
 
     template <int dim>
     std::shared_ptr<Function<dim>>
     primitive_function(ParameterHandler &prm, const std::string &section,
-                       const double rho, const bool time_dependent)
+                       const System<dim> &system, const Layers &layers,
+                       const bool time_dependent)
     {
       prm.enter_subsection(section);
       const std::string strain = prm.get("strain"), velocity = prm.get("velocity");
+      const std::string stress = section == "Initial condition" ? prm.get("stress") : "";
       prm.leave_subsection();
       auto v = split_expressions(velocity);
       require(v.size() == dim, section + "/velocity", velocity,
               std::to_string(dim) + " expression(s) separated by ';'");
-      std::vector<std::string> all{strain};
+      const bool stress_given = !Utilities::trim(stress).empty();
+      require(!stress_given || Utilities::trim(strain) == "0", section + "/stress", stress,
+              "empty when the strain is given (strain = '" + strain + "')");
+      std::vector<std::string> all{stress_given ? stress : strain};
       all.insert(all.end(), v.begin(), v.end());
-      std::vector<std::string> names{section + "/strain"};
+      std::vector<std::string> names{section + (stress_given ? "/stress" : "/strain")};
       names.resize(all.size(), section + "/velocity");
       return std::make_shared<PrimitiveToConserved<dim>>(
-        make_function<dim>(all, names, time_dependent), rho);
+        make_function<dim>(all, names, time_dependent), system, layers, stress_given);
     }
 
+    /// force_periodic_x: the second part of a run with "periodic from".
     template <int dim>
     SceneData<dim, System<dim>>
-    make_scene(ParameterHandler &prm, const int cells_override)
+    make_scene(ParameterHandler &prm, const int cells_override, const bool force_periodic_x = false)
     {
       prm.enter_subsection("Physics");
       const StressLaw law = law_names.parse("Physics/stress law", prm.get("stress law"));
-      Material        m;
-      m.rho  = prm.get_double("density");
-      m.K    = prm.get_double("modulus K");
-      m.beta = prm.get_double("beta");
       prm.leave_subsection();
-      require(m.rho > 0, "Physics/density", m.rho, "must be > 0");
-      require(m.K > 0, "Physics/modulus K", m.K, "must be > 0");
+      Material     A;
+      const Layers layers = parse_layers(prm, dim, A);
 
       prm.enter_subsection("Mesh");
       const Point<2> lo(prm.get_double("x min"), prm.get_double("y min"));
@@ -203,31 +523,47 @@ namespace granular_dg::elasticity
       require(dim == 1 || hi[1] > lo[1], "Mesh/y max", hi[1], "must be > y min");
       if (cells_override > 0)
         cells[0] = cells_override;
+      if (layers.width > 0)
+        {
+          // every material interface a mesh face: a whole number of cells per
+          // layer, and the interfaces on the grid lines
+          const unsigned int d     = layers.direction;
+          const double       h     = (hi[d] - lo[d]) / cells[d];
+          const double       per   = layers.width / h;
+          const double       shift = (layers.origin - lo[d]) / h;
+          require(std::abs(per - std::round(per)) < 1e-9 && std::round(per) >= 1 &&
+                    std::abs(shift - std::round(shift)) < 1e-9,
+                  d == 0 ? "Mesh/cells x" : "Mesh/cells y", cells[d],
+                  "a number of cells that puts every material interface (layer width " +
+                    format_number(layers.width) + ", origin " + format_number(layers.origin) +
+                    ") on a mesh face (cell size " + format_number(h) + ")");
+        }
 
-      SceneData<dim, System<dim>> scene{"elasticity", System<dim>(law, m), {}, {}, {}, {}};
+      SceneData<dim, System<dim>> scene{
+        "layered_strip", System<dim>(law, layers.table()), {}, {}, {}, {}};
       if constexpr (dim == 1)
         {
           scene.triangulation = std::make_shared<Triangulation<1>>();
-          GridGenerator::subdivided_hyper_rectangle(*scene.triangulation, std::vector<unsigned int>{cells[0]},
+          GridGenerator::subdivided_hyper_rectangle(*scene.triangulation,
+                                                    std::vector<unsigned int>{cells[0]},
                                                     Point<1>(lo[0]), Point<1>(hi[0]), true);
         }
       else
         {
           scene.triangulation =
             std::make_shared<parallel::distributed::Triangulation<2>>(MPI_COMM_WORLD);
-          GridGenerator::subdivided_hyper_rectangle(*scene.triangulation, cells, lo, hi,
-                                                    true);
+          GridGenerator::subdivided_hyper_rectangle(*scene.triangulation, cells, lo, hi, true);
         }
-
-      // one material (deal.II's 1D generator colours cells with material ids)
       for (const auto &cell : scene.triangulation->active_cell_iterators())
-        cell->set_material_id(0);
+        cell->set_material_id(layers.id(cell->center()));
 
       prm.enter_subsection("Boundary conditions");
       std::vector<Side> sides;
       for (unsigned int b = 0; b < 2 * dim; ++b)
         sides.push_back(side_names.parse(std::string("Boundary conditions/") + side_label[b],
                                          prm.get(side_label[b])));
+      if (force_periodic_x)
+        sides[0] = sides[1] = Side::periodic;
       std::vector<GridTools::PeriodicFacePair<typename Triangulation<dim>::cell_iterator>>
         periodic;
       for (unsigned int d = 0; d < dim; ++d)
@@ -246,7 +582,7 @@ namespace granular_dg::elasticity
               const std::string text = prm.get(std::string(side_label[b]) + " data");
               const auto        expr = split_expressions(text);
               dg::BoundaryCondition<dim> bc;
-              unsigned int expected = 0;
+              unsigned int               expected = 0;
               switch (sides[b])
                 {
                   case Side::outflow:
@@ -273,7 +609,7 @@ namespace granular_dg::elasticity
                           side_names.name(sides[b]) + " takes " + std::to_string(expected) +
                             " expression(s) separated by ';'");
                   bc.data = std::make_shared<BoundaryData<dim>>(
-                    make_function<dim>(expr, {name}, true), sides[b], m.rho);
+                    make_function<dim>(expr, {name}, true), sides[b], layers);
                 }
               scene.boundary[b] = bc;
             }
@@ -282,12 +618,27 @@ namespace granular_dg::elasticity
       if (!periodic.empty())
         scene.triangulation->add_periodicity(periodic);
 
-      scene.initial = primitive_function<dim>(prm, "Initial condition", m.rho, false);
+      scene.initial = primitive_function<dim>(prm, "Initial condition", scene.physics, layers, false);
       prm.enter_subsection("Exact solution");
-      const bool exact = prm.get_bool("available");
+      const bool        exact     = prm.get_bool("available");
+      const std::string reference = Utilities::trim(prm.get("reference file"));
       prm.leave_subsection();
+      require(!(exact && !reference.empty()), "Exact solution/reference file", reference,
+              "empty when Exact solution/available = true");
+      require(reference.empty() || dim == 1, "Exact solution/reference file", reference,
+              "empty in 2D (reference files are 1D)");
       if (exact)
-        scene.exact = primitive_function<dim>(prm, "Exact solution", m.rho, true);
+        scene.exact = primitive_function<dim>(prm, "Exact solution", scene.physics, layers, true);
+      else if (!reference.empty())
+        {
+          if constexpr (dim == 1)
+            scene.exact = std::make_shared<ModalReference>(reference, dim + 1);
+        }
+
+      prm.enter_subsection("Limiter");
+      const bool positivity = prm.get_bool("strain positivity");
+      prm.leave_subsection();
+      scene.hooks = std::make_shared<LayeredHooks<dim>>(scene.physics, positivity);
       return scene;
     }
 
@@ -295,15 +646,55 @@ namespace granular_dg::elasticity
     void
     run(ParameterHandler &prm, const CommonParameters &common)
     {
+      prm.enter_subsection("Boundary conditions");
+      const double periodic_from = prm.get_double("periodic from");
+      prm.leave_subsection();
       // build (and so validate) everything before anything is written
       auto scene = make_scene<dim>(prm, common.convergence ? common.convergence_cells.front() : 0);
       if (common.convergence)
         require(static_cast<bool>(scene.exact), "Exact solution/available", "false",
                 "true: a convergence study needs the exact solution");
+      if (periodic_from > 0)
+        {
+          require(periodic_from < common.final_time, "Boundary conditions/periodic from",
+                  periodic_from,
+                  "a time before the final time " + format_number(common.final_time));
+          require(!common.convergence, "Boundary conditions/periodic from", periodic_from,
+                  "0 in a convergence study");
+          prm.enter_subsection("Boundary conditions");
+          require(prm.get("left") != "periodic", "Boundary conditions/periodic from",
+                  periodic_from, "0 when left and right are periodic from the start");
+          prm.leave_subsection();
+          make_scene<dim>(prm, 0, true); // validates the second part too
+        }
       begin_output(prm, common);
       if (common.convergence)
         run_convergence_study<dim, System<dim>>(
           [&](unsigned int cells) { return make_scene<dim>(prm, cells); }, common);
+      else if (periodic_from > 0)
+        {
+          CommonParameters first = common;
+          first.final_time       = periodic_from;
+          first.directory        = common.directory + "/before-periodic";
+          first.output_times.erase(std::remove_if(first.output_times.begin(),
+                                                  first.output_times.end(),
+                                                  [&](const double t) { return t >= periodic_from; }),
+                                   first.output_times.end());
+          if (Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) == 0)
+            prepare_output_directory(first.directory, common.overwrite);
+          MPI_Barrier(MPI_COMM_WORLD);
+          if (Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) == 0)
+            std::cout << "  part 1: t in [0, " << format_number(periodic_from)
+                      << "] with the boundary conditions of the file" << std::endl;
+          const auto before = run_simulation(scene, first, common.degree, true);
+          auto       after  = make_scene<dim>(prm, 0, true);
+          after.start_time     = periodic_from;
+          after.initial_vector = before.final_solution;
+          if (Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) == 0)
+            std::cout << "  part 2: t in [" << format_number(periodic_from) << ", "
+                      << format_number(common.final_time) << "], periodic in x" << std::endl;
+          run_simulation(after, common, common.degree, true);
+        }
       else
         run_simulation(scene, common, common.degree, true);
     }
@@ -313,9 +704,9 @@ namespace granular_dg::elasticity
   scene()
   {
     Scene s;
-    s.name        = "elasticity";
+    s.name        = "layered_strip";
     s.description = "nonlinear elasticity eps_t - div u = 0, (rho u)_t - grad sigma(eps) = 0 "
-                    "in a homogeneous medium, 1D or 2D";
+                    "in a layered (or homogeneous) medium, 1D or 2D";
     s.fluxes      = "local_lax_friedrichs|impedance";
     s.declare     = declare;
     s.run         = [](ParameterHandler &prm) {

@@ -151,6 +151,20 @@ namespace granular_dg::elasticity
         return std::exp(K * eps) - Number(1.);
     }
 
+    /// The strain of a given stress (the inverse law); NaN where the law
+    /// cannot reach sigma (then the initial state is reported inadmissible).
+    double
+    strain_of_stress(const double sigma, const Coefficients<double> &a) const
+    {
+      const double K = a[modulus], beta = a[nonlinearity];
+      if (law == StressLaw::exponential)
+        return sigma > -1. ? std::log1p(sigma) / K : std::nan("");
+      if (beta == 0.)
+        return sigma / K;
+      const double disc = 1. + 4. * beta * sigma;
+      return disc >= 0. ? (std::sqrt(disc) - 1.) / (2. * beta * K) : std::nan("");
+    }
+
     /// sigma'(eps)
     template <typename Number>
     Number
@@ -336,6 +350,29 @@ namespace granular_dg::elasticity
           R[1][1] = L[1][1] = -n[1];
           R[2][1] = L[1][2] = n[0];
         }
+    }
+
+    /// The variables of the flux_variables limiter: W = (sigma, u), which are
+    /// continuous across material interfaces (the conserved eps and m jump).
+    State<double>
+    limiting_variables(const State<double> &U, const Coefficients<double> &a) const
+    {
+      State<double> W;
+      W[0] = stress(U[0], a);
+      for (int d = 0; d < dim; ++d)
+        W[1 + d] = U[1 + d] / a[density];
+      return W;
+    }
+
+    /// dW/dU = diag(sigma'(eps), 1/rho, ..).
+    Tensor<2, n_components>
+    limiting_jacobian(const State<double> &U, const Coefficients<double> &a) const
+    {
+      Tensor<2, n_components> J;
+      J[0][0] = stress_derivative(U[0], a);
+      for (int d = 0; d < dim; ++d)
+        J[1 + d][1 + d] = 1. / a[density];
+      return J;
     }
 
     /// Empty string when U is admissible, otherwise the failed test.
