@@ -23,7 +23,7 @@ namespace granular_dg
   const std::vector<Scene> &
   all_scenes()
   {
-    static const std::vector<Scene> scenes{elasticity::scene()};
+    static const std::vector<Scene> scenes{elasticity::scene(), network::scene()};
     return scenes;
   }
 } // namespace granular_dg

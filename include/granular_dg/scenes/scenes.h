@@ -28,4 +28,10 @@ namespace granular_dg
     Scene
     scene();
   }
+
+  namespace network
+  {
+    Scene
+    scene();
+  }
 } // namespace granular_dg
