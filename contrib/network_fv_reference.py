@@ -11,9 +11,6 @@ over the current state (edges and vertex), the last step landing on T,
 cell averages of the initial data, the vertex starting at c_0. Error: the
 true L1 norm over all edges and the vertex cell at T.
 
-With --paper the script also prints the error with the bookkeeping that
-reproduces the paper's Table 1 (see doc/network.md).
-
   /usr/bin/python3 contrib/network_fv_reference.py [--levels 3-8] [--examples 7.1,7.3] [--csv DIR]
 """
 import argparse
@@ -176,7 +173,7 @@ def cell_integrals(g, edges_x, breaks):
     return out
 
 
-def solve(ex, level, paper=False):
+def solve(ex, level):
     n = 2 ** level
     dx = 1.0 / n
     faces = np.linspace(0.0, 1.0, n + 1)
@@ -228,22 +225,7 @@ def solve(ex, level, paper=False):
     err_vertex = dx0 * abs(u0 - ex.vertex(T))
     result = {'level': level, 'steps': steps, 'l1': err_edges + err_vertex,
               'l1_vertex': err_vertex, 'u0': u0}
-    if paper:
-        result['paper'] = paper_bookkeeping(ex, u, u0, dx, T, dt)
     return result
-
-
-def paper_bookkeeping(ex, u, u0, dx, T, dt):
-    """The error as Table 1 appears to have been computed: half the discrete
-    L1 sum of |u_i - u(x_i, T + dt)| dx with the exact solution sampled at
-    the cell's left end x_i = i dx and one step late (dt = the last full
-    step), without the vertex cell."""
-    n = len(u[0])
-    x = np.arange(n) * dx
-    s = 0.0
-    for k in range(len(ex.edges)):
-        s += np.sum(np.abs(u[k] - ex.exact(k, x, T + dt))) * dx
-    return 0.5 * s
 
 
 def main():
@@ -251,20 +233,18 @@ def main():
     p.add_argument('--levels', default='3-8')
     p.add_argument('--examples', default='7.1,7.2,7.3,7.4,7.5')
     p.add_argument('--csv', help='write DIR/example_7_X_table.output (the test references)')
-    p.add_argument('--paper', action='store_true')
     a = p.parse_args()
     lo, hi = (int(v) for v in a.levels.split('-'))
     for name in a.examples.split(','):
         ex = EXAMPLES[name]()
         rows, prev = [], None
         for level in range(lo, hi + 1):
-            r = solve(ex, level, a.paper)
+            r = solve(ex, level)
             r['eoc'] = math.log2(prev / r['l1']) if prev else float('nan')
             prev = r['l1']
             rows.append(r)
-            extra = ('  paper-style %.5f' % r['paper']) if a.paper else ''
-            print('%s level %2d steps %5d  L1 %.12g  EOC %5.2f  vertex %.3g%s' %
-                  (ex.name, level, r['steps'], r['l1'], r['eoc'], r['l1_vertex'], extra))
+            print('%s level %2d steps %5d  L1 %.12g  EOC %5.2f  vertex %.3g' %
+                  (ex.name, level, r['steps'], r['l1'], r['eoc'], r['l1_vertex']))
         if a.csv:
             path = os.path.join(a.csv, 'example_%s_table.output' % name.replace('.', '_'))
             with open(path, 'w') as f:

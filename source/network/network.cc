@@ -442,6 +442,7 @@ namespace granular_dg::network
     NetworkErrors    e;
     const QGauss<1>  quad(2 * disc.degree + 8);
     double           l2 = 0;
+    e.l1_per_edge.assign(edge.size(), 0.);
     for (unsigned int k = 0; k < edge.size(); ++k)
       {
         const auto &layout = edge[k]->layout();
@@ -460,12 +461,14 @@ namespace granular_dg::network
                   const double w = (pieces[p + 1] - pieces[p]) * quad.weight(q);
                   const double x = pieces[p] + (pieces[p + 1] - pieces[p]) * quad.point(q)[0];
                   const double d = std::abs(evaluate(k, c, (x - x0) / h, u) - exact.value(k, x, t));
-                  e.l1_edges += w * d;
+                  e.l1_per_edge[k] += w * d;
                   l2 += w * d * d;
                   e.linf = std::max(e.linf, d);
                 }
           }
       }
+    for (const double l1 : e.l1_per_edge)
+      e.l1_edges += l1;
     const double d0 = std::abs(u.vertex - exact.vertex_value(t));
     e.l1_vertex     = vertex->width() * d0;
     l2 += vertex->width() * d0 * d0;

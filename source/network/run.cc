@@ -412,11 +412,16 @@ namespace granular_dg::network
                           const std::optional<double> vertex_value, const ExactSolution &exact,
                           const CommonParameters &params, const std::vector<double> &cfl)
   {
-    CsvWriter table;
-    table.open(params.directory + "/convergence.csv",
-               {"degree", "level", "cells_per_unit_length", "dx", "dofs", "cfl", "time_steps",
-                "l1_error", "eoc", "l1_error_edges", "l1_error_vertex", "l2_error",
-                "linf_error", "mass_balance_residual_max", "cpu_time_s", "wall_time_s"},
+    CsvWriter                table, rates;
+    std::vector<std::string> header{"degree", "level", "cells_per_unit_length", "dx", "dofs",
+                                    "cfl", "time_steps", "l1_error", "eoc", "l1_error_edges",
+                                    "l1_error_vertex", "l2_error", "linf_error",
+                                    "mass_balance_residual_max", "cpu_time_s", "wall_time_s"};
+    for (unsigned int k = 0; k < graph.edges.size(); ++k)
+      header.push_back("l1_error_edge_" + std::to_string(k + 1));
+    rates.open(params.directory + "/convergence-rates.csv", {"degree", "eoc_finest"},
+               "L1 error rate of the two finest meshes");
+    table.open(params.directory + "/convergence.csv", header,
                "L1 error over all edges and the vertex cell at t = " +
                  format_number(params.final_time) + " against " + exact.name() +
                  "; eoc = log2(e(l-1)/e(l)) per level");
@@ -446,9 +451,12 @@ namespace granular_dg::network
             const double eoc = e_prev > 0 ? std::log(e_prev / e.l1) /
                                               std::log(h_prev / p.min_cell_size()) :
                                             NAN;
-            table.row({double(d.degree), level_of(cells), double(cells), p.min_cell_size(),
-                       double(p.n_dofs()), d.cfl, double(p.n_steps()), e.l1, eoc, e.l1_edges,
-                       e.l1_vertex, e.l2, e.linf, balance.max_residual, cpu, wall.wall_time()});
+            std::vector<double> row{double(d.degree), level_of(cells), double(cells),
+                                    p.min_cell_size(), double(p.n_dofs()), d.cfl,
+                                    double(p.n_steps()), e.l1, eoc, e.l1_edges, e.l1_vertex,
+                                    e.l2, e.linf, balance.max_residual, cpu, wall.wall_time()};
+            row.insert(row.end(), e.l1_per_edge.begin(), e.l1_per_edge.end());
+            table.row(row);
             std::cout << std::setw(7) << level_of(cells) << std::setw(9) << cells
                       << std::setw(10) << p.n_dofs() << std::setw(8) << p.n_steps()
                       << std::setw(14) << std::scientific << std::setprecision(5) << e.l1
@@ -462,6 +470,7 @@ namespace granular_dg::network
             errs.push_back(e.l1);
             eocs.push_back(eoc);
           }
+        rates.row({double(d.degree), eocs.back()});
         errors.add("degree_" + std::to_string(d.degree) + "_l1_errors", errs);
         errors.add("degree_" + std::to_string(d.degree) + "_eoc", eocs);
       }

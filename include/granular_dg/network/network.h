@@ -90,6 +90,7 @@ namespace granular_dg::network
   {
     double l1 = 0, l2 = 0, linf = 0;
     double l1_edges = 0, l1_vertex = 0;
+    std::vector<double> l1_per_edge;
   };
 
   /**
@@ -197,9 +198,10 @@ namespace granular_dg::network
               const std::string &scene = "network");
 
   /// The study of Convergence/degrees x Convergence/cells (cells per unit
-  /// length): L1 error over edges and vertex, EOC, steps, CPU time, in
-  /// convergence.csv (and a Table-1-like table on stdout). cfl[i] is the
-  /// CFL number of degree i of the list.
+  /// length): L1 error over edges and vertex (and per edge), EOC, steps, CPU
+  /// time, in convergence.csv (and a Table-1-like table on stdout); the EOC
+  /// of the two finest meshes per degree in convergence-rates.csv. cfl[i] is
+  /// the CFL number of degree i of the list.
   void
   run_network_convergence(const Graph &graph, const std::vector<EdgeData> &data,
                           const Discretisation &discretisation,

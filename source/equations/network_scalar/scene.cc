@@ -179,7 +179,7 @@ namespace granular_dg::network
           const Edge        &e    = c.graph.edges[k];
           const auto        &want = ex.edges[k];
           const std::string  sec  = "Network/" + edge_section(slots[k]) + "/";
-          const std::string  why  = " (as " + ex.name + " expects; or Network/exact solution = none)";
+          const std::string  why  = ", as " + ex.name + " expects (or set Network/exact solution = none)";
           require(e.direction == want.direction, sec + "direction", direction_name(e.direction),
                   direction_name(want.direction) + why);
           require(e.flux.law == want.flux.law, sec + "flux", law_names.name(e.flux.law),
@@ -204,8 +204,9 @@ namespace granular_dg::network
               const double exact = ex.exact->value(k, x, 0.);
               require(std::abs(given - exact) <= 1e-12 * std::max(1., std::abs(exact)),
                       sec + "initial data", c.initial_text[k],
-                      "the initial data of " + ex.name + why + ": at x = " + number(x) +
-                        " it gives " + number(given) + ", the example " + number(exact));
+                      "the initial data of " + ex.name + " (or set Network/exact solution = "
+                      "none): at x = " + number(x) + " it gives " + number(given) +
+                        ", the example " + number(exact));
             }
           if (e.direction == Direction::in && e.far_end == FarEnd::dirichlet)
             for (const double t : {0., 0.5 * final_time, final_time})
@@ -215,8 +216,8 @@ namespace granular_dg::network
                 const double exact = ex.exact->value(k, 0., t);
                 require(std::abs(given - exact) <= 1e-12 * std::max(1., std::abs(exact)),
                         sec + "far end data", given,
-                        "the inflow of " + ex.name + why + " at t = " + number(t) + ": " +
-                          number(exact));
+                        "the inflow of " + ex.name + " (or set Network/exact solution = none): "
+                        "at t = " + number(t) + " it is " + number(exact));
               }
         }
     }
