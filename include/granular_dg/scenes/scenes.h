@@ -34,4 +34,10 @@ namespace granular_dg
     Scene
     scene();
   }
+
+  namespace hopper
+  {
+    Scene
+    scene();
+  }
 } // namespace granular_dg
