@@ -50,12 +50,12 @@ namespace granular_dg::network
         case Direction::in:
           {
             // from the far end on the left towards the vertex at the origin
-            const double phi = pi - pos * (count > 2 ? pi / 2 : pi / 3);
+            const double phi = pi - pos * (count > 2 ? 2 * pi / 3 : pi / 2);
             return Point<3>((L - x) * std::cos(phi), (L - x) * std::sin(phi), 0.);
           }
         case Direction::out:
           {
-            const double phi = pos * (count > 2 ? pi / 2 : pi / 3);
+            const double phi = pos * (count > 2 ? 2 * pi / 3 : pi / 2);
             return Point<3>(x * std::cos(phi), x * std::sin(phi), 0.);
           }
         default:

@@ -59,6 +59,15 @@ namespace granular_dg::network
     void
     declare(ParameterHandler &prm)
     {
+      // the paper's scheme unless the file says otherwise
+      prm.enter_subsection("Discretization");
+      prm.set("degree", "0");
+      prm.set("numerical flux", "upwind");
+      prm.leave_subsection();
+      prm.enter_subsection("Time stepping");
+      prm.set("CFL number", "0.5");
+      prm.leave_subsection();
+
       prm.enter_subsection("Network");
       prm.declare_entry("cells per unit length", "256", Patterns::Integer(1),
                         "Cells per unit length of edge: the paper's grid level l is 2^l "
