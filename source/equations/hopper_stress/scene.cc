@@ -590,6 +590,22 @@ namespace granular_dg::hopper
               }
           }
 
+        // the lower field also as CSV (one row per tau and theta >= 0)
+        {
+          CsvWriter csv;
+          csv.open(directory + "/hopper-field.csv",
+                   {"tau", "theta_deg", "x", "z", "T_rr_over_r", "T_rtheta_over_r",
+                    "T_thetatheta_over_r", "psi_deg", "hyperbolicity_margin",
+                    "rel_diff_radial"},
+                   "the marched field (Pa/m), rows of hopper-field.vtu");
+          for (unsigned int j = 0; j < grid_lower.size(); ++j)
+            for (unsigned int i = n - 1; i < grid_lower[j].size(); ++i)
+              {
+                const Sample &q = grid_lower[j][i];
+                csv.row({rows[j].tau, q.theta / deg, q.x, q.z, q.T_rr / q.r, q.T_rt / q.r,
+                         q.T_tt / q.r, q.psi, q.margin, q.rel});
+              }
+        }
         std::ofstream out(directory + "/hopper-field.vtu");
         out << std::setprecision(10);
         out << "<?xml version=\"1.0\"?>\n<VTKFile type=\"UnstructuredGrid\" version=\"0.1\" "

@@ -464,16 +464,18 @@ namespace granular_dg::hopper
     {
       if (!std::isfinite(U[0]) || !std::isfinite(U[1]))
         return "state is not finite";
-      std::ostringstream s;
-      s.precision(6);
       if (!(U[0] > 0))
         {
+          std::ostringstream s;
+          s.precision(6);
           s << "T_rr = " << U[0] << " <= 0: not a compressive passive state";
           return s.str();
         }
       const double m = hyperbolicity_margin(U);
       if (!(m > 0))
         {
+          std::ostringstream s;
+          s.precision(6);
           s << "loss of hyperbolicity: |T_rtheta/T_rr| = " << std::abs(U[1] / U[0])
             << " >= tan(delta) = " << tan_delta << " (margin " << m
             << "; on the passive branch |psi| reaches pi/4 - delta/2 = "
