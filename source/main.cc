@@ -23,7 +23,8 @@ namespace granular_dg
   const std::vector<Scene> &
   all_scenes()
   {
-    static const std::vector<Scene> scenes{elasticity::scene(), column::scene()};
+    static const std::vector<Scene> scenes{elasticity::scene(), column::scene(), network::scene(),
+                                           hopper::scene()};
     return scenes;
   }
 } // namespace granular_dg

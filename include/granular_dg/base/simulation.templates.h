@@ -244,7 +244,7 @@ namespace granular_dg
     /// The output times of a run: the list, or multiples of the interval,
     /// always ending with the final time.
     inline std::vector<double>
-    output_schedule(const CommonParameters &p, const double start_time)
+    output_schedule(const CommonParameters &p, const double start_time = 0.)
     {
       std::vector<double> times;
       if (!p.output_times.empty())

@@ -8,11 +8,20 @@
 #include <granular_dg/dg/modal_layout.h>
 
 #include <array>
+#include <optional>
 #include <vector>
 
 namespace granular_dg::dg
 {
   using namespace dealii;
+
+  /// What a boundary face tells the limiter (optional Physics::limiter_boundary()).
+  template <int n_components>
+  struct LimiterBoundary
+  {
+    Tensor<1, n_components>         difference; ///< ghost average - cell average
+    std::array<bool, n_components>  known;      ///< false: use the other side's difference
+  };
 
   enum class LimiterType
   {
@@ -49,6 +58,18 @@ namespace granular_dg::dg
    * boundary, whose exterior state is the interior one, the missing
    * difference is replaced by the one on the other side instead, so that the
    * boundary cell keeps its slope.
+   *
+   * A physics may refine this with an optional member
+   *   std::optional<LimiterBoundary<n_components>>
+   *   limiter_boundary(kind, avg, face_value, n, g, a,
+   *                    const Tensor<2, n_components> *L) const;
+   * (face_value the cell's trace at the face, n the outward normal of the
+   * face, L the left eigenvectors the limiter works with, nullptr in
+   * componentwise mode): the difference ghost - avg
+   * across the face in the limiter's variables and, per field, whether the
+   * boundary determines it (a field it does not determine uses the
+   * difference on the other side, as at an outflow boundary). std::nullopt
+   * keeps the default for that face.
    */
   template <int dim, typename Physics>
   class ModalLimiter

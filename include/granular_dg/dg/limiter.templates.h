@@ -4,6 +4,7 @@
 
 #include <granular_dg/base/errors.h>
 
+#include <array>
 #include <cmath>
 #include <string>
 #include <type_traits>
@@ -31,6 +32,20 @@ namespace granular_dg::dg
         return a;
       return minmod(a, b, c);
     }
+
+    /// Whether the Physics has the optional limiter_boundary() (limiter.h).
+    template <typename Physics, int dim, typename = void>
+    struct has_limiter_boundary : std::false_type
+    {};
+    template <typename Physics, int dim>
+    struct has_limiter_boundary<
+      Physics, dim,
+      std::void_t<decltype(std::declval<const Physics &>().limiter_boundary(
+        BoundaryKind::custom, Tensor<1, Physics::n_components>(),
+        Tensor<1, Physics::n_components>(), Tensor<1, dim>(), Tensor<1, Physics::n_components>(),
+        std::declval<const typename Physics::template Coefficients<double> &>(),
+        static_cast<const Tensor<2, Physics::n_components> *>(nullptr)))>> : std::true_type
+    {};
   } // namespace internal
 
   namespace internal
@@ -170,6 +185,9 @@ namespace granular_dg::dg
                 slope[c] = value(i, c, stride) * cells.value_at_1(1);
               }
             State dp = has_p ? avg_p - avg : State(), dm = has_m ? avg - avg_m : State();
+            // the traces at the two faces (for limiter_boundary())
+            const State face_value[2] = {avg - jump_m, avg + jump_p};
+            Tensor<2, n_components> L;
             if constexpr (internal::has_limiting_variables<Physics>::value)
               if (type == LimiterType::flux_variables)
                 {
@@ -188,7 +206,6 @@ namespace granular_dg::dg
               {
                 Tensor<1, dim> n;
                 n[d] = 1.;
-                Tensor<2, n_components> L;
                 physics.eigenvectors(avg, n, a, L, R[d]);
                 jump_p = L * jump_p;
                 jump_m = L * jump_m;
@@ -196,13 +213,40 @@ namespace granular_dg::dg
                 dp     = L * dp;
                 dm     = L * dm;
               }
+            // per field: whether the difference across the face is known
+            std::array<bool, n_components> known_p, known_m;
+            known_p.fill(has_p);
+            known_m.fill(has_m);
+            if constexpr (internal::has_limiter_boundary<Physics, dim>::value)
+              for (const unsigned int f : {2 * d, 2 * d + 1})
+                {
+                  const auto bc = boundary.find(cells.boundary_id(i, f));
+                  if (cells.neighbor(i, f) >= 0 || bc == boundary.end())
+                    continue;
+                  Tensor<1, dim> n;
+                  n[d] = (f % 2 == 0) ? -1. : 1.;
+                  State g;
+                  if (bc->second.data)
+                    {
+                      const Point<dim> x = cells.cell(i)->face(f)->center();
+                      for (unsigned int c = 0; c < n_components; ++c)
+                        g[c] = bc->second.data->value(x, c);
+                    }
+                  const auto o = physics.limiter_boundary(
+                    bc->second.kind, avg, face_value[f % 2], n, g, a,
+                    type == LimiterType::characteristic ? &L : nullptr);
+                  if (!o)
+                    continue;
+                  (f % 2 == 0 ? dm : dp) = (f % 2 == 0 ? -1. : 1.) * o->difference;
+                  (f % 2 == 0 ? known_m : known_p) = o->known;
+                }
             const double h   = cells.extent(i, d);
             const double Mh2 = M * h * h;
             for (unsigned int c = 0; c < n_components; ++c)
               {
                 // at an outflow boundary the missing difference does not limit
-                const double dpc = has_p ? dp[c] : dm[c];
-                const double dmc = has_m ? dm[c] : dp[c];
+                const double dpc = known_p[c] ? dp[c] : dm[c];
+                const double dmc = known_m[c] ? dm[c] : dp[c];
                 if (internal::minmod_tvb(jump_p[c], dpc, dmc, Mh2) != jump_p[c] ||
                     internal::minmod_tvb(jump_m[c], dpc, dmc, Mh2) != jump_m[c])
                   is_troubled = true;

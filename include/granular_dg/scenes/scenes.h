@@ -34,4 +34,16 @@ namespace granular_dg
     Scene
     scene();
   }
+
+  namespace network
+  {
+    Scene
+    scene();
+  }
+
+  namespace hopper
+  {
+    Scene
+    scene();
+  }
 } // namespace granular_dg

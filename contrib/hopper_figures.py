@@ -1,0 +1,240 @@
+#!/usr/bin/python3
+"""Figures of the hopper scene (doc/hopper.md), like Figs. 9-14 of Gremaud &
+Matthews, from the outputs of the prm/hopper_*.prm runs.
+
+  /usr/bin/python3 contrib/hopper_figures.py [OUTPUT_DIR [FIGURE_DIR]]
+
+OUTPUT_DIR (default output/) holds hopper_<case>/ as written by
+`build/granular_dg prm/hopper_<case>.prm` (contrib/hopper_figures.sh runs them
+all); PNGs go to FIGURE_DIR (default doc/figures/). A figure whose runs are
+missing is skipped with a note.
+"""
+import glob
+import os
+import sys
+
+import matplotlib
+matplotlib.use('Agg')
+import matplotlib.pyplot as plt  # noqa: E402
+import numpy as np  # noqa: E402
+
+OUT = sys.argv[1] if len(sys.argv) > 1 else 'output'
+FIG = sys.argv[2] if len(sys.argv) > 2 else os.path.join('doc', 'figures')
+os.makedirs(FIG, exist_ok=True)
+
+
+def read_csv(path):
+    """A CSV of the program: optional '# ...' comment line, a header, rows."""
+    with open(path) as f:
+        first = f.readline()
+    skip = 1 if first.startswith('#') else 0
+    return np.genfromtxt(path, delimiter=',', names=True, skip_header=skip)
+
+
+def comment(path):
+    with open(path) as f:
+        line = f.readline()
+    return line[1:].strip() if line.startswith('#') else ''
+
+
+def tau_of(path):
+    c = comment(path)
+    return float(c.split('tau = ')[1].split(',')[0])
+
+
+def have(*cases):
+    missing = [c for c in cases if not os.path.isdir(os.path.join(OUT, 'hopper_' + c))]
+    if missing:
+        print('skipped (no run): ' + ', '.join(missing))
+    return not missing
+
+
+def save(fig, name):
+    path = os.path.join(FIG, name)
+    fig.savefig(path, dpi=130, bbox_inches='tight')
+    plt.close(fig)
+    print('wrote ' + path)
+
+
+def fig9():
+    if not have('fig9_scan'):
+        return
+    d = read_csv(os.path.join(OUT, 'hopper_fig9_scan', 'fig9-scan.csv'))
+    fig, ax = plt.subplots(figsize=(6.4, 5))
+    T = d['Theta_w_deg']
+    ax.plot(T, T, 'k:', lw=1, label=r'$\theta_w = \Theta_w$')
+    C = np.where(np.isfinite(d['lambda_max']), np.maximum(d['theta_w_min_C_deg'], 0), np.nan)
+    ax.plot(T, C, 'b-', lw=2,
+            label=r'C: $\Theta_w - \arctan|1/\lambda_{max}|$ (characteristics)')
+    ax.plot(T, d['admissible_lower_min_deg'], 'g--',
+            label=r'lowest $\theta_w$ with hyperbolic data on $\Gamma_0$')
+    ax.plot(T, d['admissible_lower_max_deg'], 'g-.',
+            label=r'highest $\theta_w$ with hyperbolic data on $\Gamma_0$')
+    import json
+    s = json.load(open(os.path.join(OUT, 'hopper_fig9_scan', 'summary.json')))['diagnostics']
+    for key, txt in (('psi_monotone_up_to_deg', r'$\psi$ monotone up to %.2f$^\circ$'),
+                     ('zero_transition_at_deg', r'no steeper transition from %.2f$^\circ$')):
+        ax.axvline(s[key], color='gray', lw=0.8)
+        ax.text(s[key] + 0.3, 2, txt % s[key], rotation=90, fontsize=8, color='gray')
+    bar = os.path.join(OUT, 'hopper_march_range', 'range.csv')
+    if os.path.exists(bar):
+        r = read_csv(bar)
+        ok = r['completed'] > 0
+        ax.plot(30 + 0 * r['theta_w'][ok], r['theta_w'][ok], 'rs', ms=4,
+                label=r'$\Theta_w = 30^\circ$: marched to $r = 0.05 r_0$ (N = 400)')
+        ax.plot(30 + 0 * r['theta_w'][~ok], r['theta_w'][~ok], 'rx', ms=6,
+                label='lost hyperbolicity')
+    ax.set_xlim(T[0], T[-1] + 0.5)
+    ax.set_ylim(0, 60)
+    ax.set_xlabel(r'upper half-angle $\Theta_w$ (deg)')
+    ax.set_ylabel(r'lower half-angle $\theta_w$ (deg)')
+    ax.set_title(r'Fig. 9: admissible transitions, cone, $\delta = 32.1^\circ$, '
+                 r'$\mu = \tan 11.7^\circ$', fontsize=10)
+    ax.legend(fontsize=7, loc='upper left', bbox_to_anchor=(0.0, 0.93))
+    ax.grid(alpha=0.3)
+    save(fig, 'hopper_fig9_scan.png')
+
+
+def fig10():
+    if not have('radial_wedge', 'radial_cone'):
+        return
+    fig, axes = plt.subplots(2, 2, figsize=(10, 7))
+    for col, g, bound in ((0, 'wedge', 0.025), (1, 'cone', 0.5)):
+        d = read_csv(os.path.join(OUT, 'hopper_radial_' + g, 'hopper-steps.csv'))
+        ax = axes[0, col]
+        ax.plot(d['tau'], 100 * d['max_rel_diff_radial'], lw=0.8)
+        ax.set_title('%s, 30$^\\circ$, P1, N = 400 (paper: < %g %%)' % (g, bound), fontsize=10)
+        ax.set_xlabel(r'$\tau = -\ln(r/r_0)$')
+        ax.set_ylabel('max relative difference to the radial field (%)')
+        ax.set_ylim(bottom=0)
+        ax.grid(alpha=0.3)
+        p = os.path.join(OUT, 'hopper_perturbed_' + g, 'hopper-steps.csv')
+        ax = axes[1, col]
+        if os.path.exists(p):
+            e = read_csv(p)
+            ax.semilogy(e['tau'], e['max_rel_diff_radial'], lw=0.8,
+                        label=r'$T_{rr}(\tau = 0)$ perturbed by $10^{-3}$')
+            kappa = 0.9272 if g == 'wedge' else -0.8075
+            t = np.linspace(0, e['tau'][-1], 50)
+            i = np.searchsorted(e['tau'], 1.0)
+            ax.semilogy(t, e['max_rel_diff_radial'][i] * np.exp(kappa * (t - e['tau'][i])), 'k--',
+                        lw=1, label=r'$e^{\kappa\tau}$, $\kappa$ = %+.3f (linearised DG spectrum)'
+                        % kappa)
+            ax.legend(fontsize=8)
+        ax.set_xlabel(r'$\tau$')
+        ax.set_ylabel('max relative difference')
+        ax.grid(alpha=0.3, which='both')
+    fig.suptitle('Fig. 10: preservation of the radial field (top); growth/decay of a '
+                 'perturbation (bottom)', fontsize=11)
+    fig.tight_layout()
+    save(fig, 'hopper_fig10_preservation.png')
+
+
+def profiles(case, axes, label=None, style='-'):
+    files = sorted(glob.glob(os.path.join(OUT, 'hopper_' + case, 'stress-*.csv')))
+    cmap = plt.get_cmap('viridis')
+    taus = [tau_of(f) for f in files]
+    for k, (f, tau) in enumerate(zip(files, taus)):
+        d = read_csv(f)
+        c = cmap(k / max(1, len(files) - 1))
+        for ax, name in zip(axes, ('T_rr_over_r', 'T_rtheta_over_r', 'T_thetatheta_over_r')):
+            ax.plot(d['theta_deg'], d[name] / 1e3, style, color=c, lw=1,
+                    label=(r'$\tau$ = %.2f' % tau) if ax is axes[0] else None)
+    for ax, name in zip(axes, (r'$T_{rr}/r$', r'$T_{r\theta}/r$', r'$T_{\theta\theta}/r$')):
+        ax.set_xlabel(r'$\theta$ (deg)')
+        ax.set_ylabel(name + ' (kPa/m)')
+        ax.grid(alpha=0.3)
+        if label:
+            ax.set_title(label, fontsize=9)
+    axes[0].legend(fontsize=7)
+
+
+def field_map(case, ax, name='T_rr_over_r', title=None):
+    d = read_csv(os.path.join(OUT, 'hopper_' + case, 'hopper-field.csv'))
+    taus = np.unique(d['tau'])
+    th = d['theta_deg'][d['tau'] == taus[0]]
+    Z = d[name].reshape(len(taus), len(th)) / 1e3
+    m = ax.pcolormesh(th, taus, Z, shading='auto', cmap='viridis')
+    ax.set_xlabel(r'$\theta$ (deg)')
+    ax.set_ylabel(r'$\tau = -\ln(r/r_0)$')
+    ax.set_title(title or name, fontsize=9)
+    plt.colorbar(m, ax=ax, label='kPa/m')
+
+
+def transition_figure(case, number, title):
+    if not have(case):
+        return
+    fig = plt.figure(figsize=(13, 7.5))
+    axes = [fig.add_subplot(2, 3, i + 1) for i in range(3)]
+    profiles(case, axes)
+    for i, (name, lab) in enumerate((('T_rr_over_r', r'$T_{rr}/r$'),
+                                     ('T_rtheta_over_r', r'$T_{r\theta}/r$'),
+                                     ('psi_deg', r'$\psi$ (deg)'))):
+        ax = fig.add_subplot(2, 3, 4 + i)
+        if name == 'psi_deg':
+            d = read_csv(os.path.join(OUT, 'hopper_' + case, 'hopper-field.csv'))
+            taus = np.unique(d['tau'])
+            th = d['theta_deg'][d['tau'] == taus[0]]
+            m = ax.pcolormesh(th, taus, d[name].reshape(len(taus), len(th)), shading='auto',
+                              cmap='magma')
+            plt.colorbar(m, ax=ax, label='deg')
+            ax.set_xlabel(r'$\theta$ (deg)')
+            ax.set_ylabel(r'$\tau$')
+            ax.set_title(r'Sokolovskii angle $\psi$ (limit 28.95$^\circ$)', fontsize=9)
+        else:
+            field_map(case, ax, name, lab + r' over $(\theta, \tau)$')
+    fig.suptitle('Fig. %s: %s' % (number, title), fontsize=11)
+    fig.tight_layout()
+    save(fig, 'hopper_fig%s_%s.png' % (number, case))
+
+
+def fig11():
+    if not have('cone_30_24_p1', 'cone_30_24_p2'):
+        return
+    fig, axes = plt.subplots(2, 3, figsize=(13, 7.5))
+    profiles('cone_30_24_p1', axes[0], r'P$^1$, N = 400')
+    profiles('cone_30_24_p2', axes[1], r'P$^2$, N = 200')
+    fig.suptitle(r'Fig. 11: cone $30^\circ \to 24^\circ$, P$^1$ N = 400 (top) vs P$^2$ '
+                 r'N = 200 (bottom), stresses scaled by $r$', fontsize=11)
+    fig.tight_layout()
+    save(fig, 'hopper_fig11_p1_p2.png')
+
+
+def work_precision():
+    path = os.path.join(OUT, 'hopper_work_precision', 'work-precision.csv')
+    if not os.path.exists(path):
+        print('skipped (no run): work precision (contrib/hopper_runs.py precision)')
+        return
+    d = read_csv(path)
+    fig, axes = plt.subplots(1, 2, figsize=(11, 4.5))
+    for ax, case, title in ((axes[0], 0, 'radial field, cone 30$^\\circ$, $\\tau$ = 1: '
+                             'error vs the exact field'),
+                            (axes[1], 1, 'cone 30$^\\circ \\to$ 25$^\\circ$, $\\tau$ = 0.5: '
+                             'error vs P3, N = 1600')):
+        for p, mk in ((1, 'o-'), (2, 's-'), (3, '^-')):
+            sel = (d['case'] == case) & (d['degree'] == p)
+            if sel.any():
+                ax.loglog(d['cpu_s'][sel], d['l1_error'][sel], mk, label='P%d' % p)
+                for x, y, n in zip(d['cpu_s'][sel], d['l1_error'][sel], d['cells'][sel]):
+                    ax.annotate('%d' % n, (x, y), fontsize=6, xytext=(2, 2),
+                                textcoords='offset points')
+        ax.set_xlabel('CPU time of the time loop (s)')
+        ax.set_ylabel(r'relative L$^1$ error of $(T_{rr}, T_{r\theta})$')
+        ax.set_title(title, fontsize=9)
+        ax.grid(alpha=0.3, which='both')
+        ax.legend(fontsize=8)
+    fig.suptitle('Work-precision (labels: cells N; characteristic minmod limiter, '
+                 'CFL 1/(2k+1))', fontsize=10)
+    fig.tight_layout()
+    save(fig, 'hopper_work_precision.png')
+
+
+if __name__ == '__main__':
+    fig9()
+    fig10()
+    fig11()
+    transition_figure('cone_30_25', '12', r'cone $30^\circ \to 25^\circ$, P$^1$, N = 400')
+    transition_figure('wedge_30_25', '13', r'wedge $30^\circ \to 25^\circ$, P$^1$, N = 400')
+    transition_figure('wedge_30_35', '14', r'wedge $30^\circ \to 35^\circ$, P$^1$, N = 400')
+    transition_figure('cone_30_31', '14b', r'cone $30^\circ \to 31^\circ$, P$^1$, N = 400')
+    work_precision()

@@ -1,0 +1,395 @@
+/**
+ * The `network` scene: scalar conservation laws (system.h) on a star graph
+ * whose edges are given in the prm (Network/Edge 1..8: direction, length,
+ * flux, initial data, far-end condition), coupled by the vertex control
+ * volume (network/junction.h); a single run or a convergence study against
+ * one of the exact solutions of examples.h.
+ */
+
+#include <granular_dg/base/parameters.h>
+#include <granular_dg/base/simulation.h>
+#include <granular_dg/equations/network_scalar/examples.h>
+#include <granular_dg/equations/network_scalar/system.h>
+#include <granular_dg/network/network.h>
+#include <granular_dg/scenes/scenes.h>
+
+#include <cmath>
+
+namespace granular_dg::network
+{
+  namespace
+  {
+    constexpr unsigned int max_edges = 8;
+
+    enum class EdgeKind
+    {
+      none,
+      in,
+      out,
+      loop
+    };
+    const EnumNames<EdgeKind> direction_names({{EdgeKind::none, "none"},
+                                               {EdgeKind::in, "in"},
+                                               {EdgeKind::out, "out"},
+                                               {EdgeKind::loop, "loop"}});
+    const EnumNames<FluxLaw>  law_names({{FluxLaw::linear, "linear"},
+                                         {FluxLaw::burgers, "burgers"},
+                                         {FluxLaw::traffic, "traffic"}});
+    const EnumNames<FarEnd>   far_end_names({{FarEnd::dirichlet, "dirichlet"},
+                                             {FarEnd::outflow, "outflow"}});
+    const EnumNames<Integrator> integrator_names({{Integrator::automatic, "auto"},
+                                                  {Integrator::forward_euler, "forward_euler"},
+                                                  {Integrator::ssprk3, "ssprk3"}});
+
+    std::string
+    exact_choices()
+    {
+      std::string s = "none|initial_data";
+      for (const auto &n : example_names())
+        s += "|" + n;
+      return s;
+    }
+
+    std::string
+    edge_section(const unsigned int i)
+    {
+      return "Edge " + std::to_string(i + 1);
+    }
+
+    void
+    declare(ParameterHandler &prm)
+    {
+      // the paper's scheme unless the file says otherwise
+      prm.enter_subsection("Discretization");
+      prm.set("degree", "0");
+      prm.set("numerical flux", "upwind");
+      prm.leave_subsection();
+      prm.enter_subsection("Time stepping");
+      prm.set("CFL number", "0.5");
+      prm.leave_subsection();
+
+      prm.enter_subsection("Network");
+      prm.declare_entry("cells per unit length", "256", Patterns::Integer(1),
+                        "Cells per unit length of edge: the paper's grid level l is 2^l "
+                        "(dx = 2^-l); an edge of length L gets round(L * this) cells.");
+      prm.declare_entry("vertex width factor", "1", Patterns::Double(0),
+                        "Width of the vertex control volume in units of the paper's "
+                        "dx_0 = N dx/2 (the half cells of the N edge ends at the vertex; a "
+                        "loop has two). 1: the paper's scheme (4.1). 0: a vertex without "
+                        "volume whose value solves the discrete Rankine-Hugoniot condition "
+                        "sum_in F = sum_out F at every stage.");
+      prm.declare_entry("vertex initial value", "stationary", Patterns::Anything(),
+                        "u_0 at t = 0: 'stationary' (the discrete stationary value c_0 of "
+                        "the initial edge traces, Definition 4.4) or a constant expression, "
+                        "e.g. sqrt(2/3).");
+      prm.declare_entry("exact solution", "none", Patterns::Selection(exact_choices()),
+                        "Exact solution for the error measurement (L1 over all edges and "
+                        "the vertex cell): none, initial_data (the data are a stationary "
+                        "state), example_7_1 ... example_7_5 (Musch, Fjordholm & Risebro "
+                        "Section 7; the graph and data are checked against the example) or "
+                        "smooth_linear (a smooth solution through the vertex).");
+      for (unsigned int i = 0; i < max_edges; ++i)
+        {
+          prm.enter_subsection(edge_section(i));
+          prm.declare_entry("direction", "none", direction_names.pattern(),
+                            "How the edge meets the vertex: in (it ends at the vertex, x = "
+                            "length), out (it starts there, x = 0), loop (a roundabout: both "
+                            "ends at the vertex) or none (no such edge).");
+          prm.declare_entry("length", "1", Patterns::Double(),
+                            "Length L of the edge; its coordinate x runs over [0, L] in the "
+                            "direction of the edge. Must be > 0.");
+          prm.declare_entry("flux", "burgers", law_names.pattern(),
+                            "Flux: linear (f = a u), burgers (f = u^2/2) or traffic "
+                            "(f = alpha f0(u/alpha), f0(u) = 4u(1-u)).");
+          prm.declare_entry("advection speed", "1", Patterns::Double(),
+                            "a of the linear flux.");
+          prm.declare_entry("alpha", "1", Patterns::Double(),
+                            "alpha of the traffic flux (capacity alpha at u = alpha/2). "
+                            "Must be > 0.");
+          prm.declare_entry("initial data", "0", Patterns::Anything(),
+                            "u(x, 0) as an expression in x (edge coordinate) and pi, e.g. "
+                            "if(x < 0.5, 2, sqrt(2)).");
+          prm.declare_entry("far end", "outflow", far_end_names.pattern(),
+                            "Condition at the end away from the vertex (not for loops): "
+                            "dirichlet (exterior state = far end data: inflow) or outflow "
+                            "(exterior = interior state, the paper's zero Neumann).");
+          prm.declare_entry("far end data", "0", Patterns::Anything(),
+                            "Dirichlet state at the far end, an expression in t and pi.");
+          prm.leave_subsection();
+        }
+      prm.leave_subsection();
+
+      prm.enter_subsection("Time stepping");
+      prm.declare_entry("integrator", "auto", integrator_names.pattern(),
+                        "auto: forward_euler at degree 0 (exactly the paper's scheme (4.1)) "
+                        "and ssprk3 at degree >= 1.");
+      prm.leave_subsection();
+      prm.enter_subsection("Convergence");
+      prm.declare_entry("CFL numbers", "", Patterns::Anything(),
+                        "One CFL number per entry of Convergence/degrees (comma-separated); "
+                        "empty: Time stepping/CFL number for all. Convergence/cells are cells "
+                        "per unit length (2^l for grid level l).");
+      prm.leave_subsection();
+    }
+
+    struct Case
+    {
+      Graph                          graph;
+      std::vector<EdgeData>          data;
+      std::vector<std::string>       initial_text;
+      Discretisation                 disc;
+      std::optional<double>          vertex_value;
+      std::shared_ptr<ExactSolution> exact;
+      std::vector<double>            cfl;
+    };
+
+    /// The initial data as the exact solution: a stationary state.
+    class InitialData : public ExactSolution
+    {
+    public:
+      InitialData(std::vector<std::shared_ptr<Function<1>>> f, const double vertex)
+        : f(std::move(f))
+        , vertex(vertex)
+      {}
+      double value(unsigned int k, double x, double) const override
+      {
+        return f[k]->value(Point<1>(x));
+      }
+      double vertex_value(double) const override { return vertex; }
+      std::string name() const override { return "initial_data"; }
+
+    private:
+      std::vector<std::shared_ptr<Function<1>>> f;
+      double                                    vertex;
+    };
+
+    std::string
+    number(const double x)
+    {
+      return format_number(x);
+    }
+
+    /// An example's exact solution is only used for the graph and data it
+    /// belongs to: the directions, fluxes, initial data and Dirichlet data.
+    void
+    check_example(const Example &ex, const Case &c, const std::vector<unsigned int> &slots,
+                  const double final_time)
+    {
+      const std::string name = "Network/exact solution";
+      require(c.graph.edges.size() == ex.edges.size(), name, ex.name,
+              "an example whose graph is the prm's: " + ex.name + " has " +
+                std::to_string(ex.edges.size()) + " edges, the prm " +
+                std::to_string(c.graph.edges.size()));
+      require(final_time <= ex.exact->valid_until() * (1 + 1e-12), name, ex.name,
+              "an exact solution known up to the final time: " + ex.name + " is known for t <= " +
+                number(ex.exact->valid_until()));
+      for (unsigned int k = 0; k < ex.edges.size(); ++k)
+        {
+          const Edge        &e    = c.graph.edges[k];
+          const auto        &want = ex.edges[k];
+          const std::string  sec  = "Network/" + edge_section(slots[k]) + "/";
+          const std::string  why  = ", as " + ex.name + " expects (or set Network/exact solution = none)";
+          require(e.direction == want.direction, sec + "direction", direction_name(e.direction),
+                  direction_name(want.direction) + why);
+          require(e.flux.law == want.flux.law, sec + "flux", law_names.name(e.flux.law),
+                  law_names.name(want.flux.law) + why);
+          if (want.flux.law == FluxLaw::linear)
+            require(std::abs(e.flux.speed - want.flux.speed) < 1e-12, sec + "advection speed",
+                    e.flux.speed, number(want.flux.speed) + why);
+          if (want.flux.law == FluxLaw::traffic)
+            require(std::abs(e.flux.alpha - want.flux.alpha) < 1e-12, sec + "alpha",
+                    e.flux.alpha, number(want.flux.alpha) + why);
+          // the initial data away from the jumps, and Dirichlet inflow data
+          const auto breaks = ex.exact->breakpoints(k, 0.);
+          for (unsigned int i = 0; i <= 200; ++i)
+            {
+              const double x = e.length * i / 200.;
+              bool         near_jump = false;
+              for (const double b : breaks)
+                near_jump |= std::abs(x - b) < 1e-9;
+              if (near_jump)
+                continue;
+              const double given = c.data[k].initial->value(Point<1>(x));
+              const double exact = ex.exact->value(k, x, 0.);
+              require(std::abs(given - exact) <= 1e-12 * std::max(1., std::abs(exact)),
+                      sec + "initial data", c.initial_text[k],
+                      "the initial data of " + ex.name + " (or set Network/exact solution = "
+                      "none): at x = " + number(x) + " it gives " + number(given) +
+                        ", the example " + number(exact));
+            }
+          if (e.direction == Direction::in && e.far_end == FarEnd::dirichlet)
+            for (const double t : {0., 0.5 * final_time, final_time})
+              {
+                c.data[k].far_end->set_time(t);
+                const double given = c.data[k].far_end->value(Point<1>(0.));
+                const double exact = ex.exact->value(k, 0., t);
+                require(std::abs(given - exact) <= 1e-12 * std::max(1., std::abs(exact)),
+                        sec + "far end data", given,
+                        "the inflow of " + ex.name + " (or set Network/exact solution = none): "
+                        "at t = " + number(t) + " it is " + number(exact));
+              }
+        }
+    }
+
+    Case
+    make_case(ParameterHandler &prm, const CommonParameters &common)
+    {
+      Case c;
+      c.disc.degree  = common.degree;
+      c.disc.flux    = common.flux;
+      c.disc.cfl     = common.cfl;
+      c.disc.limiter = common.limiter;
+      c.disc.tvb_M   = common.tvb_M;
+
+      prm.enter_subsection("Time stepping");
+      c.disc.integrator =
+        integrator_names.parse("Time stepping/integrator", prm.get("integrator"));
+      prm.leave_subsection();
+
+      prm.enter_subsection("Network");
+      c.disc.cells_per_unit_length = prm.get_integer("cells per unit length");
+      c.disc.vertex_width_factor   = prm.get_double("vertex width factor");
+      const std::string vertex_text = prm.get("vertex initial value");
+      const std::string exact_name  = prm.get("exact solution");
+      std::vector<unsigned int> slots;
+      for (unsigned int i = 0; i < max_edges; ++i)
+        {
+          const std::string sec = "Network/" + edge_section(i) + "/";
+          prm.enter_subsection(edge_section(i));
+          const EdgeKind kind = direction_names.parse(sec + "direction", prm.get("direction"));
+          if (kind == EdgeKind::none)
+            {
+              prm.leave_subsection();
+              continue;
+            }
+          Edge e;
+          e.label     = edge_section(i);
+          e.direction = kind == EdgeKind::in ? Direction::in :
+                        kind == EdgeKind::out ? Direction::out : Direction::loop;
+          e.length = prm.get_double("length");
+          require(e.length > 0, sec + "length", prm.get("length"), "must be > 0");
+          e.flux.law   = law_names.parse(sec + "flux", prm.get("flux"));
+          e.flux.speed = prm.get_double("advection speed");
+          e.flux.alpha = prm.get_double("alpha");
+          require(e.flux.law != FluxLaw::traffic || e.flux.alpha > 0, sec + "alpha",
+                  prm.get("alpha"), "must be > 0 (the capacity scale of the traffic flux)");
+          e.far_end = far_end_names.parse(sec + "far end", prm.get("far end"));
+          EdgeData d;
+          c.initial_text.push_back(prm.get("initial data"));
+          d.initial = make_function<1>({c.initial_text.back()}, {sec + "initial data"}, false);
+          if (e.far_end == FarEnd::dirichlet && e.direction != Direction::loop)
+            {
+              // an expression in t (x is the far end's coordinate)
+              d.far_end = make_function<1>({prm.get("far end data")}, {sec + "far end data"}, true);
+            }
+          prm.leave_subsection();
+          c.graph.edges.push_back(e);
+          c.data.push_back(d);
+          slots.push_back(i);
+        }
+      prm.leave_subsection();
+      require(!c.graph.edges.empty(), "Network/Edge 1/direction", "none",
+              "in, out or loop for at least one Network/Edge N");
+
+      if (vertex_text != "stationary")
+        {
+          const std::string allowed = "'stationary' or a constant expression, e.g. sqrt(2/3)";
+          try
+            {
+              const auto f = make_function<1>({vertex_text}, {"Network/vertex initial value"}, false);
+              const double v = f->value(Point<1>(0.3));
+              require(v == f->value(Point<1>(0.7)), "Network/vertex initial value", vertex_text,
+                      allowed);
+              c.vertex_value = v;
+            }
+          catch (const InputError &)
+            {
+              require(false, "Network/vertex initial value", vertex_text, allowed);
+            }
+        }
+
+      if (exact_name == "initial_data")
+        {
+          std::vector<std::shared_ptr<Function<1>>> f;
+          for (const auto &d : c.data)
+            f.push_back(d.initial);
+          // the vertex value of a stationary state: given or c_0 of the data
+          double u0 = 0;
+          if (c.vertex_value)
+            u0 = *c.vertex_value;
+          else
+            {
+              NetworkProblem probe(c.graph, c.disc, c.data);
+              probe.initialize(std::nullopt);
+              u0 = probe.vertex_value();
+            }
+          c.exact = std::make_shared<InitialData>(f, u0);
+        }
+      else if (exact_name != "none")
+        {
+          const Example ex = make_example(exact_name);
+          check_example(ex, c, slots, common.final_time);
+          c.exact = ex.exact;
+          for (unsigned int k = 0; k < c.data.size(); ++k)
+            c.data[k].initial_breakpoints = ex.exact->breakpoints(k, 0.);
+        }
+
+      prm.enter_subsection("Convergence");
+      const std::string cfl_text = prm.get("CFL numbers");
+      prm.leave_subsection();
+      for (const auto &s : Utilities::split_string_list(cfl_text, ','))
+        {
+          double v = 0;
+          try
+            {
+              v = Utilities::string_to_double(s);
+            }
+          catch (...)
+            {
+              require(false, "Convergence/CFL numbers", cfl_text, "comma-separated numbers");
+            }
+          require(v > 0 && v <= 1, "Convergence/CFL numbers", cfl_text, "numbers in (0, 1]");
+          c.cfl.push_back(v);
+        }
+      if (c.cfl.empty())
+        c.cfl.assign(common.convergence_degrees.size(), common.cfl);
+      if (common.convergence)
+        require(c.cfl.size() == common.convergence_degrees.size(), "Convergence/CFL numbers",
+                cfl_text,
+                "one number per entry of Convergence/degrees (" +
+                  std::to_string(common.convergence_degrees.size()) + ")");
+      return c;
+    }
+
+    void
+    run(ParameterHandler &prm)
+    {
+      CommonParameters common;
+      common.parse(prm);
+      // build (and so validate) everything before anything is written
+      const Case c = make_case(prm, common);
+      if (common.convergence)
+        require(static_cast<bool>(c.exact), "Network/exact solution", "none",
+                "an exact solution: a convergence study measures errors");
+      begin_output(prm, common);
+      if (common.convergence)
+        run_network_convergence(c.graph, c.data, c.disc, c.vertex_value, *c.exact, common,
+                                c.cfl);
+      else
+        run_network(c.graph, c.data, c.disc, c.vertex_value, c.exact.get(), common, true);
+    }
+  } // namespace
+
+  Scene
+  scene()
+  {
+    Scene s;
+    s.name        = "network";
+    s.description = "scalar conservation laws u_t + f_k(u)_x = 0 on a star network with a "
+                    "vertex control volume (linear, Burgers, traffic fluxes)";
+    s.fluxes      = "upwind|godunov|local_lax_friedrichs";
+    s.declare     = declare;
+    s.run         = run;
+    return s;
+  }
+} // namespace granular_dg::network

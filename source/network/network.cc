@@ -1,0 +1,526 @@
+#include <deal.II/base/polynomial.h>
+#include <deal.II/base/quadrature_lib.h>
+#include <deal.II/fe/fe_dgq.h>
+#include <deal.II/grid/grid_generator.h>
+
+#include <granular_dg/base/errors.h>
+#include <granular_dg/base/output.h>
+#include <granular_dg/network/network.h>
+
+#include <algorithm>
+#include <cmath>
+
+namespace granular_dg::network
+{
+  // ---------------------------------------------------------------- state
+
+  void
+  NetworkState::reinit(const NetworkState &other)
+  {
+    edges.resize(other.edges.size());
+    for (unsigned int k = 0; k < edges.size(); ++k)
+      edges[k].reinit(other.edges[k]);
+    vertex = 0.;
+  }
+
+  void
+  NetworkState::equ(const double a, const NetworkState &x)
+  {
+    for (unsigned int k = 0; k < edges.size(); ++k)
+      edges[k].equ(a, x.edges[k]);
+    vertex = a * x.vertex;
+  }
+
+  void
+  NetworkState::add(const double a, const NetworkState &x)
+  {
+    for (unsigned int k = 0; k < edges.size(); ++k)
+      edges[k].add(a, x.edges[k]);
+    vertex += a * x.vertex;
+  }
+
+  void
+  NetworkState::sadd(const double s, const double a, const NetworkState &x)
+  {
+    for (unsigned int k = 0; k < edges.size(); ++k)
+      edges[k].sadd(s, a, x.edges[k]);
+    vertex = s * vertex + a * x.vertex;
+  }
+
+  // ------------------------------------------------------------- problem
+
+  /// The value the vertex faces of the edges see (their Dirichlet data).
+  class NetworkProblem::VertexData : public Function<1>
+  {
+  public:
+    double u0 = 0.;
+    double
+    value(const Point<1> &, const unsigned int) const override
+    {
+      return u0;
+    }
+  };
+
+  struct NetworkProblem::EdgeDiscretisation
+  {
+    Triangulation<1>             tria;
+    std::unique_ptr<FESystem<1>> fe;
+    DoFHandler<1>                dof_handler;
+    MappingQ1<1>                 mapping;
+    std::unique_ptr<EdgeOperator> op;
+    std::unique_ptr<EdgeLimiter>  limiter;
+    /// layout cell numbers in the order of increasing x
+    std::vector<unsigned int> order;
+    double                    h = 0;
+
+    const dg::ModalLayout<1> &
+    layout() const
+    {
+      return limiter->layout();
+    }
+    unsigned int first() const { return order.front(); }
+    unsigned int last() const { return order.back(); }
+    double left(const unsigned int c) const { return layout().cell(c)->vertex(0)[0]; }
+  };
+
+  namespace
+  {
+    /// Adaptive Gauss integration of the vector of moments int g(x) L_k(xi)
+    /// over [a, b] within a cell [x0, x0 + h]: the interval is bisected
+    /// until two levels agree to round-off, so a jump inside a cell is
+    /// located to machine precision (exact cell averages, (4.11)).
+    void
+    integrate_moments(const Function<1> &g, const std::vector<Polynomials::Legendre> &L,
+                      const QGauss<1> &quad, const double x0, const double h, const double a,
+                      const double b, std::vector<double> &result, const unsigned int depth)
+    {
+      auto moments = [&](const double lo, const double hi) {
+        std::vector<double> m(L.size(), 0.);
+        for (unsigned int q = 0; q < quad.size(); ++q)
+          {
+            const double x = lo + (hi - lo) * quad.point(q)[0];
+            const double w = (hi - lo) * quad.weight(q);
+            const double v = g.value(Point<1>(x));
+            for (unsigned int k = 0; k < L.size(); ++k)
+              m[k] += w * v * L[k].value((x - x0) / h);
+          }
+        return m;
+      };
+      const double mid   = 0.5 * (a + b);
+      const auto   whole = moments(a, b);
+      auto         halves = moments(a, mid);
+      const auto   right  = moments(mid, b);
+      double       diff = 0, size = 0;
+      for (unsigned int k = 0; k < L.size(); ++k)
+        {
+          halves[k] += right[k];
+          diff = std::max(diff, std::abs(halves[k] - whole[k]));
+          size = std::max(size, std::abs(halves[k]));
+        }
+      if (diff <= 1e-15 * std::max(b - a, size) || depth >= 55)
+        {
+          for (unsigned int k = 0; k < L.size(); ++k)
+            result[k] += halves[k];
+          return;
+        }
+      integrate_moments(g, L, quad, x0, h, a, mid, result, depth + 1);
+      integrate_moments(g, L, quad, x0, h, mid, b, result, depth + 1);
+    }
+  } // namespace
+
+  NetworkProblem::NetworkProblem(const Graph &graph, const Discretisation &discretisation,
+                                 std::vector<EdgeData> edge_data)
+    : net(graph)
+    , disc(discretisation)
+    , data(std::move(edge_data))
+    , vertex_data(std::make_shared<VertexData>())
+  {
+    AssertThrow(data.size() == net.edges.size(), ExcMessage("one EdgeData per edge"));
+    h_min = 1e300;
+    for (unsigned int k = 0; k < net.edges.size(); ++k)
+      {
+        const Edge &e  = net.edges[k];
+        auto        ed = std::make_unique<EdgeDiscretisation>();
+        const unsigned int n =
+          std::max(1u, static_cast<unsigned int>(std::lround(e.length * disc.cells_per_unit_length)));
+        GridGenerator::subdivided_hyper_rectangle(ed->tria, std::vector<unsigned int>{n},
+                                                  Point<1>(0.), Point<1>(e.length), true);
+        ed->h = e.length / n;
+        h_min = std::min(h_min, ed->h);
+        ed->fe = std::make_unique<FESystem<1>>(FE_DGQLegendre<1>(disc.degree), 1);
+        ed->dof_handler.reinit(ed->tria);
+        ed->dof_handler.distribute_dofs(*ed->fe);
+
+        dg::BoundaryMap<1> boundary;
+        for (const types::boundary_id b : {types::boundary_id(0), types::boundary_id(1)})
+          {
+            dg::BoundaryCondition<1> bc;
+            if (e.vertex_at(b))
+              {
+                bc.kind = dg::BoundaryKind::dirichlet;
+                bc.data = vertex_data;
+              }
+            else if (e.far_end == FarEnd::dirichlet)
+              {
+                bc.kind = dg::BoundaryKind::dirichlet;
+                bc.data = data[k].far_end;
+              }
+            boundary[b] = bc;
+          }
+        const System system(e.flux);
+        ed->op = std::make_unique<EdgeOperator>(system, disc.flux, boundary);
+        ed->op->reinit(ed->mapping, ed->dof_handler);
+        ed->limiter = std::make_unique<EdgeLimiter>(system, disc.limiter, disc.tvb_M, boundary);
+        ed->limiter->reinit(ed->dof_handler);
+
+        const auto &layout = ed->layout();
+        for (unsigned int c = 0; c < layout.n_owned(); ++c)
+          ed->order.push_back(c);
+        std::sort(ed->order.begin(), ed->order.end(), [&](unsigned int a, unsigned int b) {
+          return layout.cell(a)->vertex(0)[0] < layout.cell(b)->vertex(0)[0];
+        });
+        edge.push_back(std::move(ed));
+      }
+
+    double width = 0;
+    for (const auto &end : net.vertex_ends())
+      width += 0.5 * edge[end.edge]->h;
+    vertex = std::make_unique<Junction>(net, disc.flux, disc.vertex_width_factor * width);
+
+    u.edges.resize(edge.size());
+    for (unsigned int k = 0; k < edge.size(); ++k)
+      edge[k]->op->initialize_vector(u.edges[k]);
+    rhs.reinit(u);
+    for (unsigned int m = 0; m <= disc.degree; ++m)
+      legendre.emplace_back(m);
+  }
+
+  NetworkProblem::~NetworkProblem() = default;
+
+  unsigned int
+  NetworkProblem::n_stages() const
+  {
+    const bool euler = disc.integrator == Integrator::forward_euler ||
+                       (disc.integrator == Integrator::automatic && disc.degree == 0);
+    return euler ? 1 : dg::SSPRK3<NetworkState>::n_stages;
+  }
+
+  unsigned long
+  NetworkProblem::n_dofs() const
+  {
+    unsigned long n = 1;
+    for (const auto &e : edge)
+      n += e->dof_handler.n_dofs();
+    return n;
+  }
+
+  unsigned long
+  NetworkProblem::n_cells() const
+  {
+    unsigned long n = 0;
+    for (const auto &e : edge)
+      n += e->tria.n_active_cells();
+    return n;
+  }
+
+  double
+  NetworkProblem::evaluate(const unsigned int k, const unsigned int c, const double xi,
+                           const NetworkState &s) const
+  {
+    const auto &layout = edge[k]->layout();
+    double      value  = 0;
+    for (unsigned int m = 0; m <= disc.degree; ++m)
+      value += s.edges[k](layout.index(c, 0, m)) * legendre[m].value(xi);
+    return value;
+  }
+
+  void
+  NetworkProblem::initialize(const std::optional<double> vertex_value)
+  {
+    const auto     &L = legendre;
+    const QGauss<1> quad(disc.degree + 3);
+    for (unsigned int k = 0; k < edge.size(); ++k)
+      {
+        const auto &layout = edge[k]->layout();
+        data[k].initial->set_time(0.);
+        for (const unsigned int c : edge[k]->order)
+          {
+            const double        x0 = edge[k]->left(c), h = layout.extent(c, 0);
+            std::vector<double> moments(L.size(), 0.);
+            // split at the known jumps first, then refine adaptively
+            std::vector<double> pieces{x0, x0 + h};
+            for (const double b : data[k].initial_breakpoints)
+              if (b > x0 && b < x0 + h)
+                pieces.push_back(b);
+            std::sort(pieces.begin(), pieces.end());
+            for (unsigned int p = 0; p + 1 < pieces.size(); ++p)
+              integrate_moments(*data[k].initial, L, quad, x0, h, pieces[p], pieces[p + 1],
+                                moments, 0);
+            for (unsigned int m = 0; m < L.size(); ++m)
+              u.edges[k](layout.index(c, 0, m)) = moments[m] / h;
+          }
+      }
+    // the limiter sees the vertex value as the neighbour of the edge ends
+    u.vertex          = vertex_value ? *vertex_value : vertex->balance(vertex_traces(u), 0.);
+    vertex_data->u0   = u.vertex;
+    for (unsigned int k = 0; k < edge.size(); ++k)
+      edge[k]->limiter->apply(u.edges[k], 0.);
+    if (!vertex_value || vertex->width() == 0)
+      u.vertex = vertex->balance(vertex_traces(u), 0.);
+    t      = 0.;
+    inflow = 0.;
+    steps  = 0;
+  }
+
+  std::vector<double>
+  NetworkProblem::vertex_traces(const NetworkState &s) const
+  {
+    std::vector<double> traces;
+    for (const auto &end : vertex->ends())
+      {
+        const auto &e = *edge[end.edge];
+        traces.push_back(end.incoming ? evaluate(end.edge, e.last(), 1., s) :
+                                        evaluate(end.edge, e.first(), 0., s));
+      }
+    return traces;
+  }
+
+  double
+  NetworkProblem::far_end_inflow(const double time, const NetworkState &s) const
+  {
+    double sum = 0;
+    for (unsigned int k = 0; k < edge.size(); ++k)
+      {
+        const Edge &e = net.edges[k];
+        if (e.direction == Direction::loop)
+          continue;
+        const bool   in    = e.direction == Direction::in;
+        const double x     = in ? 0. : e.length;
+        const double trace = in ? evaluate(k, edge[k]->first(), 0., s) :
+                                  evaluate(k, edge[k]->last(), 1., s);
+        double ghost = trace;
+        if (e.far_end == FarEnd::dirichlet)
+          {
+            data[k].far_end->set_time(time);
+            ghost = data[k].far_end->value(Point<1>(x));
+          }
+        sum += in ? e.flux.numerical_flux(disc.flux, ghost, trace) :
+                    -e.flux.numerical_flux(disc.flux, trace, ghost);
+      }
+    return sum;
+  }
+
+  void
+  NetworkProblem::apply(const double time, const NetworkState &src, NetworkState &dst) const
+  {
+    const auto traces = vertex_traces(src);
+    const double u0   = vertex->width() > 0 ? src.vertex : vertex->balance(traces, time);
+    vertex_data->u0   = u0;
+    for (unsigned int k = 0; k < edge.size(); ++k)
+      edge[k]->op->apply(time, src.edges[k], dst.edges[k]);
+    dst.vertex = vertex->rate(traces, u0);
+    stage_inflow.push_back(far_end_inflow(time, src));
+  }
+
+  void
+  NetworkProblem::post_stage(NetworkState &s, const double stage_time)
+  {
+    vertex_data->u0 =
+      vertex->width() > 0 ? s.vertex : vertex->balance(vertex_traces(s), stage_time);
+    for (unsigned int k = 0; k < edge.size(); ++k)
+      edge[k]->limiter->apply(s.edges[k], stage_time);
+    if (vertex->width() == 0)
+      s.vertex = vertex->balance(vertex_traces(s), stage_time);
+
+    if (!std::isfinite(s.vertex))
+      throw StateFailure{stage_time, -1, 0., s.vertex, "vertex value is not finite"};
+    for (unsigned int k = 0; k < edge.size(); ++k)
+      for (const double v : s.edges[k])
+        if (!std::isfinite(v))
+          {
+            // report the first cell whose modes are not finite
+            const auto &layout = edge[k]->layout();
+            for (const unsigned int c : edge[k]->order)
+              for (unsigned int m = 0; m <= disc.degree; ++m)
+                if (!std::isfinite(s.edges[k](layout.index(c, 0, m))))
+                  throw StateFailure{stage_time, int(k),
+                                     edge[k]->left(c) + 0.5 * layout.extent(c, 0),
+                                     s.edges[k](layout.index(c, 0, 0)),
+                                     "state is not finite"};
+          }
+  }
+
+  double
+  NetworkProblem::time_step() const
+  {
+    double speed_over_h = 0;
+    for (unsigned int k = 0; k < edge.size(); ++k)
+      speed_over_h = std::max(speed_over_h, edge[k]->op->max_speed_over_h(u.edges[k]));
+    for (const auto &end : vertex->ends())
+      speed_over_h = std::max(speed_over_h,
+                              std::abs(net.edges[end.edge].flux.derivative(u.vertex)) /
+                                edge[end.edge]->h);
+    return disc.cfl / speed_over_h;
+  }
+
+  void
+  NetworkProblem::step(const double dt)
+  {
+    stage_inflow.clear();
+    if (n_stages() == 1)
+      {
+        apply(t, u, rhs);
+        u.add(dt, rhs);
+        post_stage(u, t + dt);
+        inflow += dt * stage_inflow[0];
+      }
+    else
+      {
+        rk3.step(*this, u, t, dt, [&](NetworkState &s, const double stage_time, const double) {
+          post_stage(s, stage_time);
+        });
+        // the Butcher weights of the Shu-Osher SSPRK3: 1/6, 1/6, 2/3
+        inflow += dt * (stage_inflow[0] / 6. + stage_inflow[1] / 6. + 2. * stage_inflow[2] / 3.);
+      }
+    t += dt;
+    dt_last = dt;
+    ++steps;
+  }
+
+  double
+  NetworkProblem::mass() const
+  {
+    double m = vertex->width() * u.vertex;
+    for (unsigned int k = 0; k < edge.size(); ++k)
+      m += edge[k]->op->integrals(u.edges[k])[0];
+    return m;
+  }
+
+  double
+  NetworkProblem::l1_norm() const
+  {
+    double m = vertex->width() * std::abs(u.vertex);
+    for (unsigned int k = 0; k < edge.size(); ++k)
+      {
+        const auto &layout = edge[k]->layout();
+        for (const unsigned int c : edge[k]->order)
+          m += std::abs(u.edges[k](layout.index(c, 0, 0))) * layout.extent(c, 0);
+      }
+    return m;
+  }
+
+  double
+  NetworkProblem::rh_residual() const
+  {
+    return -vertex->net_outflow(vertex_traces(u), u.vertex);
+  }
+
+  double
+  NetworkProblem::total_variation() const
+  {
+    double tv = 0;
+    for (unsigned int k = 0; k < edge.size(); ++k)
+      {
+        const auto &layout = edge[k]->layout();
+        const auto &order  = edge[k]->order;
+        for (unsigned int i = 0; i + 1 < order.size(); ++i)
+          tv += std::abs(u.edges[k](layout.index(order[i + 1], 0, 0)) -
+                         u.edges[k](layout.index(order[i], 0, 0)));
+      }
+    for (const auto &end : vertex->ends())
+      {
+        const auto &e = *edge[end.edge];
+        const unsigned int c = end.incoming ? e.last() : e.first();
+        tv += std::abs(u.vertex - u.edges[end.edge](e.layout().index(c, 0, 0)));
+      }
+    return tv;
+  }
+
+  NetworkErrors
+  NetworkProblem::errors(const ExactSolution &exact) const
+  {
+    NetworkErrors    e;
+    const QGauss<1>  quad(2 * disc.degree + 8);
+    double           l2 = 0;
+    e.l1_per_edge.assign(edge.size(), 0.);
+    for (unsigned int k = 0; k < edge.size(); ++k)
+      {
+        const auto &layout = edge[k]->layout();
+        const auto  breaks = exact.breakpoints(k, t);
+        for (const unsigned int c : edge[k]->order)
+          {
+            const double        x0 = edge[k]->left(c), h = layout.extent(c, 0);
+            std::vector<double> pieces{x0, x0 + h};
+            for (const double b : breaks)
+              if (b > x0 && b < x0 + h)
+                pieces.push_back(b);
+            std::sort(pieces.begin(), pieces.end());
+            for (unsigned int p = 0; p + 1 < pieces.size(); ++p)
+              for (unsigned int q = 0; q < quad.size(); ++q)
+                {
+                  const double w = (pieces[p + 1] - pieces[p]) * quad.weight(q);
+                  const double x = pieces[p] + (pieces[p + 1] - pieces[p]) * quad.point(q)[0];
+                  const double d = std::abs(evaluate(k, c, (x - x0) / h, u) - exact.value(k, x, t));
+                  e.l1_per_edge[k] += w * d;
+                  l2 += w * d * d;
+                  e.linf = std::max(e.linf, d);
+                }
+          }
+      }
+    for (const double l1 : e.l1_per_edge)
+      e.l1_edges += l1;
+    const double d0 = std::abs(u.vertex - exact.vertex_value(t));
+    e.l1_vertex     = vertex->width() * d0;
+    l2 += vertex->width() * d0 * d0;
+    if (vertex->width() > 0)
+      e.linf = std::max(e.linf, d0);
+    e.l1 = e.l1_edges + e.l1_vertex;
+    e.l2 = std::sqrt(l2);
+    return e;
+  }
+
+  double
+  NetworkProblem::l1_distance(const NetworkProblem &other) const
+  {
+    const QGauss<1> quad(disc.degree + 2);
+    double          sum = vertex->width() * std::abs(u.vertex - other.u.vertex);
+    for (unsigned int k = 0; k < edge.size(); ++k)
+      {
+        const auto &layout = edge[k]->layout();
+        for (const unsigned int c : edge[k]->order)
+          for (unsigned int q = 0; q < quad.size(); ++q)
+            sum += quad.weight(q) * layout.extent(c, 0) *
+                   std::abs(evaluate(k, c, quad.point(q)[0], u) -
+                            other.evaluate(k, c, quad.point(q)[0], other.u));
+      }
+    return sum;
+  }
+
+  double
+  NetworkProblem::max_mode_difference(const NetworkProblem &other) const
+  {
+    double d = std::abs(u.vertex - other.u.vertex);
+    for (unsigned int k = 0; k < edge.size(); ++k)
+      for (unsigned int i = 0; i < u.edges[k].locally_owned_size(); ++i)
+        d = std::max(d, std::abs(u.edges[k].local_element(i) - other.u.edges[k].local_element(i)));
+    return d;
+  }
+
+  std::vector<std::vector<std::pair<double, double>>>
+  NetworkProblem::sample(const unsigned int points_per_cell) const
+  {
+    std::vector<std::vector<std::pair<double, double>>> out(edge.size());
+    for (unsigned int k = 0; k < edge.size(); ++k)
+      {
+        const auto &layout = edge[k]->layout();
+        for (const unsigned int c : edge[k]->order)
+          for (unsigned int j = 0; j < points_per_cell; ++j)
+            {
+              const double xi = points_per_cell == 1 ? 0.5 : j / double(points_per_cell - 1);
+              out[k].emplace_back(edge[k]->left(c) + xi * layout.extent(c, 0),
+                                  evaluate(k, c, xi, u));
+            }
+      }
+    return out;
+  }
+} // namespace granular_dg::network
