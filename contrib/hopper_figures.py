@@ -206,25 +206,30 @@ def work_precision():
         print('skipped (no run): work precision (contrib/hopper_runs.py precision)')
         return
     d = read_csv(path)
-    fig, axes = plt.subplots(1, 2, figsize=(11, 4.5))
-    for ax, case, title in ((axes[0], 0, 'radial field, cone 30$^\\circ$, $\\tau$ = 1: '
-                             'error vs the exact field'),
-                            (axes[1], 1, 'cone 30$^\\circ \\to$ 25$^\\circ$, $\\tau$ = 0.5: '
-                             'error vs P3, N = 1600')):
-        for p, mk in ((1, 'o-'), (2, 's-'), (3, '^-')):
-            sel = (d['case'] == case) & (d['degree'] == p)
-            if sel.any():
-                ax.loglog(d['cpu_s'][sel], d['l1_error'][sel], mk, label='P%d' % p)
-                for x, y, n in zip(d['cpu_s'][sel], d['l1_error'][sel], d['cells'][sel]):
+    fig, axes = plt.subplots(1, 2, figsize=(11, 4.6))
+    colors = {1: 'C0', 2: 'C1', 3: 'C2'}
+    panels = ((axes[0], ((0, '-', 'limiter'), (2, '--', 'no limiter')),
+               r'radial field, cone 30$^\circ$, $\tau$ = 1: error vs the exact field'),
+              (axes[1], ((1, '-', 'limiter'),),
+               r'cone 30$^\circ \to$ 25$^\circ$, $\tau$ = 0.5: error vs P3, N = 800'))
+    for ax, cases, title in panels:
+        for case, ls, what in cases:
+            for p, mk in ((1, 'o'), (2, 's'), (3, '^')):
+                sel = (d['case'] == case) & (d['degree'] == p)
+                if not sel.any():
+                    continue
+                ax.loglog(d['cpu_march_s'][sel], d['l1_error'][sel], mk + ls, color=colors[p],
+                          label='P%d, %s' % (p, what))
+                for x, y, n in zip(d['cpu_march_s'][sel], d['l1_error'][sel], d['cells'][sel]):
                     ax.annotate('%d' % n, (x, y), fontsize=6, xytext=(2, 2),
                                 textcoords='offset points')
-        ax.set_xlabel('CPU time of the time loop (s)')
+        ax.set_xlabel('CPU time of the march (s; run minus a one-step run)')
         ax.set_ylabel(r'relative L$^1$ error of $(T_{rr}, T_{r\theta})$')
         ax.set_title(title, fontsize=9)
         ax.grid(alpha=0.3, which='both')
-        ax.legend(fontsize=8)
-    fig.suptitle('Work-precision (labels: cells N; characteristic minmod limiter, '
-                 'CFL 1/(2k+1))', fontsize=10)
+        ax.legend(fontsize=7)
+    fig.suptitle('Work-precision (labels: cells N; CFL 1/3, 1/5, 0.12 for P1, P2, P3; '
+                 'characteristic minmod limiter, M = 0)', fontsize=10)
     fig.tight_layout()
     save(fig, 'hopper_work_precision.png')
 

@@ -84,6 +84,7 @@ plane.CameraPosition = [0, 0, 6]
 plane.CameraFocalPoint = [0, 0, 0]
 plane.CameraViewUp = [0, 1, 0]
 plane.ResetCamera()
+plane.GetActiveCamera().Dolly(1.2)
 
 # right: u as height above the plane
 height = make_view()
@@ -101,6 +102,7 @@ height.CameraPosition = [0.6, -5.0, 1.6]
 height.CameraFocalPoint = [0, 0, 0.3]
 height.CameraViewUp = [0, 0, 1]
 height.ResetCamera()
+height.GetActiveCamera().Dolly(1.5)
 # one colour scale for all, fixed to the data range of this snapshot
 lut.AutomaticRescaleRangeMode = 'Never'
 lut.RescaleTransferFunction(u_range[0], u_range[1])

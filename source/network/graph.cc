@@ -60,14 +60,13 @@ namespace granular_dg::network
           }
         default:
           {
-            // a circle of circumference L through the origin, run
-            // counter-clockwise, centred above (first loop) or below
-            const double R     = L / (2 * pi);
+            // a petal in the sector psi +- 25 degrees, above (first loop) or
+            // below the vertex, clear of the straight edges
             const double psi   = (index % 2 == 0) ? pi / 2 : -pi / 2;
-            const double scale = 1. + 0.3 * (index / 2);
-            const double theta = psi + pi + 2 * pi * x / L * (index % 2 == 0 ? 1 : -1);
-            return Point<3>(scale * R * (std::cos(psi) + std::cos(theta)),
-                            scale * R * (std::sin(psi) + std::sin(theta)), 0.);
+            const double delta = 25. * pi / 180., s = x / L;
+            const double r     = 0.5 * L * (1. + 0.2 * (index / 2)) * std::sin(pi * s);
+            const double theta = psi - delta + 2 * delta * s;
+            return Point<3>(r * std::cos(theta), r * std::sin(theta), 0.);
           }
       }
   }

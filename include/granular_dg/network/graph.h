@@ -61,8 +61,8 @@ namespace granular_dg::network
     vertex_ends() const;
 
     /// Where point x of edge k is drawn in the plane: ingoing edges on the
-    /// left, outgoing ones on the right, loops as circles through the
-    /// vertex (at the origin), above and below.
+    /// left, outgoing ones on the right, loops as petals through the vertex
+    /// (at the origin), above and below.
     Point<3>
     embed(unsigned int edge, double x) const;
   };

@@ -253,7 +253,8 @@ namespace granular_dg::hopper
      * Diagnostics of the march: per step the hyperbolicity margin and the
      * difference to the lower hopper's radial field (hopper-steps.csv), per
      * output tau the stresses T/r in Pa/m (stress-NNNN.csv), at the end the
-     * whole marched field in physical coordinates (hopper-field.vtu/.pvd).
+     * whole marched field in physical coordinates (hopper-field.vtu/.pvd/.csv,
+     * unless Output/write vtu is false).
      */
     class HopperHooks : public SceneHooks<1>
     {
@@ -261,7 +262,7 @@ namespace granular_dg::hopper
       HopperHooks(const Parameters &p, const System &physics,
                   std::shared_ptr<const RadialField> lower,
                   std::shared_ptr<const RadialField> upper, const std::string &directory,
-                  const double tau_end, const unsigned int degree)
+                  const double tau_end, const unsigned int degree, const bool write_vtu)
         : p(p)
         , physics(physics)
         , lower(std::move(lower))
@@ -270,6 +271,7 @@ namespace granular_dg::hopper
         , directory(directory)
         , tau_end(tau_end)
         , degree(degree)
+        , write_vtu(write_vtu)
       {}
 
       void
@@ -378,7 +380,8 @@ namespace granular_dg::hopper
             // a failed run: the last good state's profile as well
             if (tau < tau_end * (1 - 1e-12))
               write_stress_profile(U, tau);
-            write_field();
+            if (write_vtu)
+              write_field();
           }
       }
 
@@ -680,6 +683,7 @@ namespace granular_dg::hopper
       const std::string                   directory;
       const double                        tau_end;
       const unsigned int                  degree;
+      const bool                          write_vtu;
       const dg::ModalLayout<1>           *layout = nullptr;
       std::vector<unsigned int>           order;
       std::vector<MonitorPoint>           monitor;
@@ -786,7 +790,8 @@ namespace granular_dg::hopper
       scene.boundary[1].kind = dg::BoundaryKind::custom;   // the friction wall
       scene.initial          = std::make_shared<InitialData>(transition, p.perturbation);
       auto hooks = std::make_shared<HopperHooks>(p, physics, lower, upper, common.directory,
-                                                 common.final_time, common.degree);
+                                                 common.final_time, common.degree,
+                                                 common.write_vtu);
       scene.hooks = hooks;
 
       begin_output(prm, common);

@@ -6,6 +6,8 @@
  * one of the exact solutions of examples.h.
  */
 
+#include <deal.II/base/mpi.h>
+
 #include <granular_dg/base/parameters.h>
 #include <granular_dg/base/simulation.h>
 #include <granular_dg/equations/network_scalar/examples.h>
@@ -364,6 +366,9 @@ namespace granular_dg::network
     void
     run(ParameterHandler &prm)
     {
+      if (Utilities::MPI::n_mpi_processes(MPI_COMM_WORLD) > 1)
+        throw InputError("the network scene runs on one MPI rank (its edges are small serial "
+                         "1D meshes): run it without mpirun");
       CommonParameters common;
       common.parse(prm);
       // build (and so validate) everything before anything is written
