@@ -422,7 +422,7 @@ namespace granular_dg
 
     record();
     Progress progress(scene.start_time, params.final_time,
-                      write_files ? params.progress_interval : 0.);
+                      (write_files && root) ? params.progress_interval : 0.);
     // accumulates wall and CPU time of the steps alone (no output, no diagnostics)
     Timer loop_timer;
     loop_timer.stop();
