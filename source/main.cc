@@ -12,6 +12,7 @@
 #include <granular_dg/scenes/scenes.h>
 #include <granular_dg/version.h>
 
+#include <filesystem>
 #include <fstream>
 #include <iostream>
 #include <regex>
@@ -65,16 +66,16 @@ namespace
   std::string
   find_scene_name(const std::string &filename, const std::vector<std::string> &overrides)
   {
-    std::string name;
+    std::string name, override_name;
     for (const auto &o : overrides)
       if (o.rfind("scene=", 0) == 0)
-        name = Utilities::trim(o.substr(6));
-    if (!name.empty())
-      return name;
+        override_name = Utilities::trim(o.substr(6));
     std::ifstream in(filename);
     if (!in)
       throw InputError("cannot open parameter file '" + filename +
                        "': it does not exist or is not readable");
+    if (std::filesystem::is_directory(filename))
+      throw InputError("cannot read parameter file '" + filename + "': it is a directory");
     const std::regex pattern(R"(^\s*set\s+scene\s*=\s*([^#\s]*)\s*(#.*)?$)");
     const std::regex section(R"(^\s*subsection\s)"), end(R"(^\s*end\s*(#.*)?$)");
     std::string line;
@@ -88,6 +89,14 @@ namespace
           --depth;
         else if (depth == 0 && std::regex_match(line, match, pattern))
           name = match[1];
+      }
+    if (!override_name.empty())
+      {
+        // the file's parameters belong to its scene
+        require(name.empty() || name == override_name, "scene", override_name,
+                "the scene of " + filename + ", " + name + " (--set scene only names the "
+                "scene of a file that does not)");
+        return override_name;
       }
     if (name.empty())
       throw InputError("parameter file '" + filename +

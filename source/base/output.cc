@@ -160,12 +160,17 @@ namespace granular_dg
           for (const auto &entry : fs::directory_iterator(directory))
             {
               const std::string name = entry.path().filename().string();
-              const bool        ours =
-                name == "summary.json" || name == "solution.pvd" ||
-                name == "timeseries.csv" || name == "parameters.prm" ||
-                name.rfind("convergence", 0) == 0 ||
-                name.rfind("solution-", 0) == 0 || name.rfind("profile-", 0) == 0;
-              if (ours)
+              // the scenes' files too (a stale slice or stress table must
+              // not pass for a result of the new run)
+              const char *prefixes[] = {"summary.json", "solution", "timeseries.csv",
+                                        "parameters.prm", "convergence", "profile-",
+                                        "modes-", "slice-", "stress-", "hopper-",
+                                        "radial-field", "fig9-scan.csv", "sgn-map.csv",
+                                        "history.csv", "final-profile.csv"};
+              bool ours = false;
+              for (const char *prefix : prefixes)
+                ours = ours || name.rfind(prefix, 0) == 0;
+              if (ours && entry.is_regular_file())
                 fs::remove(entry.path());
             }
           break;

@@ -3,6 +3,7 @@
 
 #include <granular_dg/base/parameters.h>
 
+#include <filesystem>
 #include <fstream>
 #include <iostream>
 #include <map>
@@ -169,6 +170,8 @@ namespace granular_dg
         R"(Line <(\d+)> of file <[^>]*>: The entry value (.*) for the entry named (.*) does not match the given pattern: (.*))");
       static const std::regex file_unknown(
         R"(Line <(\d+)> of file <[^>]*>: No entry with name <(.*)> was declared in the current subsection.*)");
+      static const std::regex file_section(
+        R"(Line <(\d+)> of file <[^:>]*>?: There is no such subsection to be entered: .*)");
       static const std::regex file_line(R"(Line <(\d+)> of file <[^>]*>: (.*))");
       // set(): "The string <9> does not match the given pattern <[..]>."
       static const std::regex set_pattern(
@@ -189,6 +192,15 @@ namespace granular_dg
           const unsigned int line = std::stoul(m[1]);
           return "unknown parameter '" + section_path_at(filename, line) +
                  m[2].str() + "' (" + filename + " line " + m[1].str() + ")" + hint;
+        }
+      if (std::regex_match(message, m, file_section))
+        {
+          // the path including the subsection opened on that line
+          const unsigned int line = std::stoul(m[1]);
+          std::string        path = section_path_at(filename, line + 1);
+          path.pop_back();
+          return "unknown section '" + path + "' (" + filename + " line " + m[1].str() + ")" +
+                 hint;
         }
       if (std::regex_match(message, m, file_line))
         return filename + " line " + m[1].str() + ": " + m[2].str();
@@ -216,6 +228,8 @@ namespace granular_dg
       if (!in)
         throw InputError("cannot open parameter file '" + filename +
                          "': it does not exist or is not readable");
+      if (std::filesystem::is_directory(filename))
+        throw InputError("cannot read parameter file '" + filename + "': it is a directory");
     }
     try
       {
@@ -238,6 +252,8 @@ namespace granular_dg
         std::vector<std::string> path =
           Utilities::split_string_list(path_text, '/');
         const std::string value = Utilities::trim(o.substr(eq + 1));
+        if (path.empty() || path.back().empty())
+          throw InputError("--set '" + o + "' is not of the form Section/name=value");
         const std::string name  = path.back();
         path.pop_back();
         unsigned int depth = 0;

@@ -41,7 +41,46 @@ namespace granular_dg
         }
       return out;
     }
+
+    /// Whether the scene declares Convergence/CFL numbers (then it checks them).
+    bool
+    convergence_has_own_cfl(ParameterHandler &prm)
+    {
+      prm.enter_subsection("Convergence");
+      bool declared = true;
+      try
+        {
+          prm.get("CFL numbers");
+        }
+      catch (...)
+        {
+          declared = false;
+        }
+      prm.leave_subsection();
+      return declared;
+    }
   } // namespace
+
+  double
+  ssprk3_cfl_limit(const unsigned int degree)
+  {
+    // max nu = a dt/h with |R(nu z)| <= 1 for every eigenvalue z of the
+    // upwind DG operator of u_t + u_x = 0 (Fourier analysis; R the SSP-RK3
+    // stability polynomial), rounded down; contrib/dg_cfl_limits.py
+    // computes them
+    static const double limit[] = {1.2563, 0.4095, 0.2097, 0.1300, 0.0896};
+    return limit[std::min(degree, 4u)];
+  }
+
+  void
+  require_stable_cfl(const double cfl, const unsigned int degree, const std::string &parameter)
+  {
+    const double limit = ssprk3_cfl_limit(degree);
+    require(cfl <= limit, parameter, cfl,
+            "at most " + format_number(limit) + " at degree " + std::to_string(degree) +
+              " (the linear stability limit of SSP-RK3 with DG of degree p = 0..4: "
+              "1.2563, 0.4095, 0.2097, 0.13, 0.0896)");
+  }
 
   void
   CommonParameters::declare(ParameterHandler &prm, const std::string &fluxes)
@@ -170,6 +209,14 @@ namespace granular_dg
       require(convergence_cells.size() >= 2 && !convergence_degrees.empty(),
               "Convergence/cells", convergence_cells.size(),
               "at least two mesh sizes and one degree for a study");
+    // above the linear stability limit the run would blow up after a few
+    // hundred steps (or, with a limiter, silently lose accuracy); a
+    // convergence study needs it for every degree of the study, unless the
+    // scene takes one CFL number per degree (Convergence/CFL numbers)
+    if (!(convergence && convergence_has_own_cfl(prm)))
+      for (const unsigned int p : convergence ? convergence_degrees :
+                                                std::vector<unsigned int>{degree})
+        require_stable_cfl(cfl, p, "Time stepping/CFL number");
   }
 
   void

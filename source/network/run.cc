@@ -363,7 +363,8 @@ namespace granular_dg::network
           {
             p.state() = last_good;
             const std::string file = snapshots.write(p, exact);
-            msg += "; last good state written to " + params.directory + "/" +
+            msg += "; last good state (t = " + format_number(p.time()) + ") written to " +
+                   params.directory + "/" +
                    (file.empty() ? "profile files" : file);
           }
         result.n_steps     = p.n_steps();

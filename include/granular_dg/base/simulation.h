@@ -186,6 +186,15 @@ namespace granular_dg
     const std::function<SceneData<dim, Physics>(unsigned int)> &make_scene,
     const CommonParameters                                     &params);
 
+  /// The linear stability limit of the CFL number of SSP-RK3 with upwind DG
+  /// of degree p (1D Fourier analysis): 1.2563, 0.4095, 0.2097, 0.13, 0.0896.
+  double
+  ssprk3_cfl_limit(unsigned int degree);
+
+  /// An InputError naming parameter unless cfl <= ssprk3_cfl_limit(degree).
+  void
+  require_stable_cfl(double cfl, unsigned int degree, const std::string &parameter);
+
   /// Create (or, with Output/overwrite, clear) the output directory and write
   /// parameters.prm, the parameters actually used. Call after all input has
   /// been validated, so that bad input leaves nothing behind.

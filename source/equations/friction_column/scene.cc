@@ -613,6 +613,8 @@ namespace granular_dg::column
       p.closed_form   = prm.get_bool("closed form");
       p.write_sgn_map = prm.get_bool("write sgn map");
       prm.leave_subsection();
+      require(p.probe <= p.length, "Diagnostics/probe position", p.probe,
+              "a height in [0, Mesh/length = " + format_number(p.length) + "]");
       if (p.closed_form)
         {
           require(p.physics.m == 1 && p.physics.gravity == 0 && p.physics.u_star == 0 &&
@@ -662,6 +664,11 @@ namespace granular_dg::column
       CommonParameters common;
       common.parse(prm);
       const ColumnParameters p = parse(prm, common);
+      const System           system(p.physics);
+      require(std::isfinite(system.stress(p.u_b)) && std::isfinite(system.sound_speed(p.u_b)),
+              "Physics/wall strain", p.u_b,
+              "a strain whose stress |u_b|^m and wave speed are finite in double precision "
+              "(they overflow for m = " + format_number(p.physics.m) + ")");
       if (common.convergence)
         require(p.closed_form, "Diagnostics/closed form", "false",
                 "true: a convergence study needs the exact solution");

@@ -27,6 +27,7 @@
 #include <functional>
 #include <limits>
 #include <iostream>
+#include <sstream>
 
 namespace granular_dg::elasticity
 {
@@ -591,6 +592,46 @@ namespace granular_dg::elasticity
         make_function<dim>(all, names, time_dependent), system, layers, stress_given);
     }
 
+    /// Initial data outside the admissible set (a stress the law cannot
+    /// reach, sigma' <= 0) are bad input: checked at 3^dim Gauss points of
+    /// every cell (all ranks see all coarse cells, so all agree).
+    template <int dim>
+    void
+    require_admissible_initial_state(ParameterHandler &prm, const SceneData<dim, System<dim>> &scene)
+    {
+      prm.enter_subsection("Initial condition");
+      const std::string stress = Utilities::trim(prm.get("stress"));
+      const std::string name   = stress.empty() ? "strain" : "stress";
+      const std::string text   = stress.empty() ? prm.get("strain") : stress;
+      prm.leave_subsection();
+      const QGauss<dim> q(3);
+      Vector<double>    U(dim + 1);
+      for (const auto &cell : scene.triangulation->active_cell_iterators())
+        for (const auto &xi : q.get_points())
+          {
+            Point<dim> x = cell->vertex(0);
+            for (int d = 0; d < dim; ++d)
+              x[d] += xi[d] * (cell->vertex(GeometryInfo<dim>::vertices_per_cell - 1)[d] -
+                               cell->vertex(0)[d]);
+            scene.initial->vector_value(x, U);
+            Tensor<1, dim + 1> s;
+            for (unsigned int c = 0; c <= dim; ++c)
+              s[c] = U[c];
+            const std::string why =
+              scene.physics.admissibility_violation(s, scene.physics.coefficients(cell->material_id()));
+            std::ostringstream at;
+            at << "initial data in the admissible set; at x = (";
+            for (int d = 0; d < dim; ++d)
+              at << (d ? ", " : "") << format_number(x[d]);
+            at << ") the strain is " << format_number(s[0]) << ": "
+               << (!stress.empty() && !std::isfinite(s[0]) ?
+                     "no strain gives this stress (the law's range: sigma > -1 for the "
+                     "exponential law, 1 + 4 beta sigma >= 0 for the quadratic one)" :
+                     why);
+            require(why.empty(), "Initial condition/" + name, text, at.str());
+          }
+    }
+
     /// force_periodic_x: the second part of a run with "periodic from";
     /// output_directory: where the scene's own files go (empty: none).
     template <int dim>
@@ -710,6 +751,7 @@ namespace granular_dg::elasticity
         scene.triangulation->add_periodicity(periodic);
 
       scene.initial = primitive_function<dim>(prm, "Initial condition", scene.physics, layers, false);
+      require_admissible_initial_state(prm, scene);
       prm.enter_subsection("Exact solution");
       const bool        exact     = prm.get_bool("available");
       const std::string reference = Utilities::trim(prm.get("reference file"));

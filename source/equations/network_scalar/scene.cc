@@ -353,13 +353,26 @@ namespace granular_dg::network
           require(v > 0 && v <= 1, "Convergence/CFL numbers", cfl_text, "numbers in (0, 1]");
           c.cfl.push_back(v);
         }
+      const bool own_cfl = !c.cfl.empty();
       if (c.cfl.empty())
         c.cfl.assign(common.convergence_degrees.size(), common.cfl);
       if (common.convergence)
-        require(c.cfl.size() == common.convergence_degrees.size(), "Convergence/CFL numbers",
-                cfl_text,
-                "one number per entry of Convergence/degrees (" +
-                  std::to_string(common.convergence_degrees.size()) + ")");
+        {
+          require(c.cfl.size() == common.convergence_degrees.size(), "Convergence/CFL numbers",
+                  cfl_text,
+                  "one number per entry of Convergence/degrees (" +
+                    std::to_string(common.convergence_degrees.size()) + ")");
+          for (unsigned int i = 0; i < c.cfl.size(); ++i)
+            require_stable_cfl(c.cfl[i], common.convergence_degrees[i],
+                               own_cfl ? "Convergence/CFL numbers" : "Time stepping/CFL number");
+        }
+      // forward Euler is unstable with DG of degree >= 1 at every CFL number
+      for (const unsigned int p : common.convergence ? common.convergence_degrees :
+                                                       std::vector<unsigned int>{common.degree})
+        require(c.disc.integrator != Integrator::forward_euler || p == 0,
+                "Time stepping/integrator", "forward_euler",
+                "auto or ssprk3 at degree " + std::to_string(p) +
+                  " (forward Euler is unstable with DG of degree >= 1)");
       return c;
     }
 

@@ -1,0 +1,41 @@
+#!/usr/bin/python3
+"""An output directory that holds a previous run: refused without
+Output/overwrite, cleaned of the program's files (and only those) with it,
+and refused too when the previous run was killed before summary.json.
+
+usage: previous_run.py EXE PRM   (run in an empty directory; prints one line
+per check, compared with previous_run.output)
+"""
+import os
+import subprocess
+import sys
+
+exe, prm = sys.argv[1], sys.argv[2]
+
+
+def run(*extra):
+    p = subprocess.run([exe, prm, '--set', 'Output/directory=out',
+                        '--set', 'Output/progress interval=0', *extra],
+                       capture_output=True, text=True)
+    lines = p.stderr.splitlines()
+    return p.returncode, lines
+
+
+code, _ = run()
+print(f'first run: exit {code}')
+# a stale file of an earlier run and a file of the user's
+open('out/slice-0042.csv', 'w').close()
+open('out/notes.txt', 'w').close()
+code, err = run()
+print(f'second run without overwrite: exit {code}, {len(err)} line(s) on stderr')
+print(err[-1] if err else '')
+print(f'  results untouched: {os.path.exists("out/slice-0042.csv")}')
+code, err = run('--set', 'Output/overwrite=true')
+print(f'with overwrite = true: exit {code}')
+print(f'  stale slice-0042.csv removed: {not os.path.exists("out/slice-0042.csv")}')
+print(f'  notes.txt kept: {os.path.exists("out/notes.txt")}')
+# a run killed before it wrote summary.json still leaves results behind
+os.remove('out/summary.json')
+code, err = run()
+print(f'killed run (no summary.json): exit {code}, {len(err)} line(s) on stderr')
+print(err[-1] if err else '')
