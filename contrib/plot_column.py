@@ -1,10 +1,10 @@
 #!/usr/bin/python3
 """Figures of a column run in the layout of seed 000, Figs 4.1-4.3.
 
-    contrib/plot_column.py RUNDIR OUT.png [--title TEXT] [--zmax Z] [--compare RUNDIR:label ...]
+    contrib/plot_column.py RUNDIR OUT.png [--title TEXT] [--zmax Z] [--tmax T] [--compare RUNDIR:label ...]
 
 Top left: sgn(v) (the friction multiplier per cell) in the (z, t) plane from
-sgn-map.csv; top right: sgn(v) at the final time; bottom left: the final strain
+sgn-map.csv, 0 ahead of the pressure front; top right: sgn(v) at the final time; bottom left: the final strain
 beside Janssen's profile and beside the stationary problem (4.1)-(4.2) with the
 final sgn(v) (final-profile.csv); bottom right: max_z v(z, t) on a log scale
 (history.csv; --compare adds other runs, e.g. another resolution).
@@ -30,6 +30,7 @@ def main():
     p.add_argument("output")
     p.add_argument("--title", default="")
     p.add_argument("--zmax", type=float, default=0)
+    p.add_argument("--tmax", type=float, default=0, help="time range of the sgn(v) map (0: all)")
     p.add_argument("--compare", nargs="*", default=[])
     a = p.parse_args()
 
@@ -45,16 +46,29 @@ def main():
             z = np.array([float(x) for x in f.readline().split(",")[1:]])
         data = np.loadtxt(sgn_file, delimiter=",", skiprows=2, ndmin=2)
         t, s = data[:, 0], data[:, 1:]
+        # ahead of the pressure front (the running maximum of front_position,
+        # the leading edge of |u| > 1e-3 |u_b|) the scheme leaves round-off-sized
+        # precursor values whose multiplier means nothing: draw them as 0
+        # (undisturbed), as in the paper
+        extent = np.maximum.accumulate(history["front_position"])
+        ahead = z[None, :] > np.interp(t, history["time"], extent)[:, None] + 1e-9
+        s = np.where(ahead, 0., s)
         keep = z <= zmax
+        if a.tmax > 0:
+            rows = t <= a.tmax
+            t, s = t[rows], s[rows]
+        # black 0, white 1 as in the paper when sgn(v) >= 0 throughout
+        vmin = -1 if np.min(s[:, keep]) < 0 else 0
         im = ax[0, 0].imshow(s[:, keep], origin="lower", aspect="auto", cmap="gray",
-                             vmin=-1, vmax=1, extent=[z[keep][0], z[keep][-1], t[0], t[-1]],
+                             vmin=vmin, vmax=1, extent=[z[keep][0], z[keep][-1], t[0], t[-1]],
                              interpolation="nearest")
         fig.colorbar(im, ax=ax[0, 0], label="sgn(v)")
+        ax[0, 0].set_title("sgn(v): black %d, white 1 (0: undisturbed)" % vmin)
     ax[0, 0].set_xlabel("z")
     ax[0, 0].set_ylabel("t")
-    ax[0, 0].set_title("sgn(v): black -1, white 1 (0: at rest, unloaded)")
 
-    ax[0, 1].plot(final["z"], final["sgn_v"], "k-", lw=1)
+    ahead = final["z"] > np.max(history["front_position"]) + 1e-9
+    ax[0, 1].plot(final["z"], np.where(ahead, 0., final["sgn_v"]), "k-", lw=1)
     ax[0, 1].set_xlim(0, zmax)
     ax[0, 1].set_ylim(-1.1, 1.1)
     ax[0, 1].set_xlabel("z")

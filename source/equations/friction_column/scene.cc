@@ -185,10 +185,11 @@ namespace granular_dg::column
             previous_state[c] = state[c];
           }
 
-        // friction and wall work: int |v| sigma dz dt and sigma_b v(0) dt
-        const double friction_power = integrate(U, [&](const double u, const double v) {
-          return std::abs(v) * system.stress(u);
-        });
+        // friction and wall work: int |v| sigma dz dt and sigma_b v(0) dt;
+        // cells at rest (all velocity modes 0, e.g. stuck) add exactly 0
+        const double friction_power = integrate(
+          U, [&](const double u, const double v) { return std::abs(v) * system.stress(u); },
+          true);
         double v_wall = 0;
         for (unsigned int k = 0; k <= layout->degree(); ++k)
           v_wall += U.local_element(layout->index(0, 1, k)) * at_left[k];
@@ -284,23 +285,36 @@ namespace granular_dg::column
         return x;
       }
 
+      /// skip_rest: leave out the cells whose velocity modes are all 0 (for
+      /// densities that vanish there; the sum is the same to the last bit)
       template <typename Density>
       double
-      integrate(const dg::VectorType &U, const Density &density) const
+      integrate(const dg::VectorType &U, const Density &density,
+                const bool skip_rest = false) const
       {
         const unsigned int nm  = layout->degree() + 1;
         double             sum = 0;
         for (unsigned int c = 0; c < layout->n_owned(); ++c)
-          for (unsigned int i = 0; i < q_weights.size(); ++i)
-            {
-              double u = 0, v = 0;
-              for (unsigned int k = 0; k < nm; ++k)
-                {
-                  u += U.local_element(layout->index(c, 0, k)) * q_basis[i * nm + k];
-                  v += U.local_element(layout->index(c, 1, k)) * q_basis[i * nm + k];
-                }
-              sum += q_weights[i] * h * density(u, v);
-            }
+          {
+            if (skip_rest)
+              {
+                bool at_rest = true;
+                for (unsigned int k = 0; k < nm && at_rest; ++k)
+                  at_rest = U.local_element(layout->index(c, 1, k)) == 0.;
+                if (at_rest)
+                  continue;
+              }
+            for (unsigned int i = 0; i < q_weights.size(); ++i)
+              {
+                double u = 0, v = 0;
+                for (unsigned int k = 0; k < nm; ++k)
+                  {
+                    u += U.local_element(layout->index(c, 0, k)) * q_basis[i * nm + k];
+                    v += U.local_element(layout->index(c, 1, k)) * q_basis[i * nm + k];
+                  }
+                sum += q_weights[i] * h * density(u, v);
+              }
+          }
         return sum;
       }
 
