@@ -33,12 +33,12 @@ def profile_at(directory, time):
 def peaks(x, s, n):
     """The n highest local maxima (height, position), highest first."""
     i = np.nonzero((s[1:-1] > s[:-2]) & (s[1:-1] >= s[2:]) & (s[1:-1] > 0.05 * s.max()))[0] + 1
-    # one peak per 2 length units (a solitary wave spans several layers;
+    # one peak per 5 length units, periodically (a solitary wave spans several layers;
     # the layering modulates the stress within it)
     order = i[np.argsort(-s[i])]
     kept = []
     for k in order:
-        if all(abs(x[k] - x[j]) > 2 for j in kept):
+        if all(min(abs(x[k] - x[j]), 300 - abs(x[k] - x[j])) > 5 for j in kept):
             kept.append(k)
         if len(kept) == n:
             break
