@@ -120,6 +120,24 @@ namespace granular_dg
     prm.declare_entry("cells", "16,32,64,128", Patterns::List(Patterns::Integer(1)),
                       "Numbers of cells (per direction) of the study, coarse to fine.");
     prm.leave_subsection();
+
+    prm.enter_subsection("Benchmark");
+    prm.declare_entry("enabled", "false", Patterns::Bool(),
+                      "Time the steps instead of running to the final time (also "
+                      "granular_dg --benchmark CASE.prm): warm-up steps, then repetitions "
+                      "of a block of steps; writes benchmark.json (CPU time per step, "
+                      "DoF-stage updates per second per core, the phases of a step) and "
+                      "no snapshots. doc/performance.md.");
+    prm.declare_entry("repetitions", "5", Patterns::Integer(1),
+                      "Number of timed blocks (min and median are reported).");
+    prm.declare_entry("steps", "0", Patterns::Integer(0),
+                      "Steps per block; 0: doubled from 1 until a block takes the "
+                      "minimum time.");
+    prm.declare_entry("minimum time", "0.3", Patterns::Double(0),
+                      "CPU seconds a calibrated block lasts at least.");
+    prm.declare_entry("warm-up steps", "2", Patterns::Integer(0),
+                      "Untimed steps before the calibration.");
+    prm.leave_subsection();
   }
 
   void
@@ -170,6 +188,16 @@ namespace granular_dg
       require(convergence_cells.size() >= 2 && !convergence_degrees.empty(),
               "Convergence/cells", convergence_cells.size(),
               "at least two mesh sizes and one degree for a study");
+
+    prm.enter_subsection("Benchmark");
+    benchmark.enabled      = prm.get_bool("enabled");
+    benchmark.repetitions  = prm.get_integer("repetitions");
+    benchmark.steps        = prm.get_integer("steps");
+    benchmark.min_time     = prm.get_double("minimum time");
+    benchmark.warmup_steps = prm.get_integer("warm-up steps");
+    prm.leave_subsection();
+    require(!(benchmark.enabled && convergence), "Benchmark/enabled", "true",
+            "false when Convergence/enabled is true");
   }
 
   void
