@@ -4,6 +4,7 @@
 #include <granular_dg/base/reference_solution.h>
 
 #include <algorithm>
+#include <cstdlib>
 #include <fstream>
 #include <sstream>
 
@@ -21,7 +22,7 @@ namespace granular_dg
     const auto eq = line.find('=');
     if (line.rfind("# time", 0) != 0 || eq == std::string::npos)
       throw InputError("reference solution '" + filename + "': no '# time = T' line");
-    file_time = std::stod(line.substr(eq + 1));
+    file_time = std::strtod(line.substr(eq + 1).c_str(), nullptr);
     std::getline(in, line);
     const unsigned int columns = std::count(line.begin(), line.end(), ',') + 1;
     if (columns < 2 + n_components || (columns - 2) % n_components != 0)
@@ -35,7 +36,15 @@ namespace granular_dg
         std::string       item;
         std::vector<double> values;
         while (std::getline(row, item, ','))
-          values.push_back(std::stod(item));
+          {
+            // strtod, not stod: denormal values must not throw
+            char        *end = nullptr;
+            const double v   = std::strtod(item.c_str(), &end);
+            if (end == item.c_str())
+              throw InputError("reference solution '" + filename + "': '" + item +
+                               "' is not a number");
+            values.push_back(v);
+          }
         if (values.size() != columns)
           throw InputError("reference solution '" + filename + "': a row with " +
                            std::to_string(values.size()) + " values instead of " +

@@ -1,4 +1,5 @@
 #include <deal.II/base/polynomial.h>
+#include <deal.II/dofs/dof_tools.h>
 #include <deal.II/fe/fe.h>
 
 #include <granular_dg/dg/modal_layout.h>
@@ -99,14 +100,32 @@ namespace granular_dg::dg
 
   template <int dim>
   void
-  ModalLayout<dim>::localize(const Utilities::MPI::Partitioner &partitioner)
+  ModalLayout<dim>::localize(const DoFHandler<dim> &dof_handler, const MPI_Comm comm)
   {
+    IndexSet relevant;
+    DoFTools::extract_locally_relevant_dofs(dof_handler, relevant);
+    const auto partitioner = std::make_shared<Utilities::MPI::Partitioner>(
+      dof_handler.locally_owned_dofs(), relevant, comm);
     for (auto &i : dof_index)
       {
-        AssertThrow(partitioner.in_local_range(i) || partitioner.is_ghost_entry(i),
-                    ExcMessage("ModalLayout: a neighbour's DoF is not in the vector's ghost set"));
-        i = partitioner.global_to_local(i);
+        AssertThrow(partitioner->in_local_range(i) || partitioner->is_ghost_entry(i),
+                    ExcMessage("ModalLayout: a neighbour's DoF is not locally relevant"));
+        i = partitioner->global_to_local(i);
       }
+    has_ghosts = Utilities::MPI::max(partitioner->n_ghost_indices(), comm) > 0;
+    if (has_ghosts)
+      ghosted.reinit(partitioner);
+  }
+
+  template <int dim>
+  const LinearAlgebra::distributed::Vector<double> &
+  ModalLayout<dim>::with_ghosts(const LinearAlgebra::distributed::Vector<double> &u) const
+  {
+    if (!has_ghosts)
+      return u;
+    ghosted.copy_locally_owned_data_from(u);
+    ghosted.update_ghost_values();
+    return ghosted;
   }
 
   template class ModalLayout<1>;

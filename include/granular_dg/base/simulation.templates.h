@@ -14,6 +14,8 @@
 #include <deal.II/numerics/data_out.h>
 #include <deal.II/numerics/data_postprocessor.h>
 
+#include <deal.II/base/conditional_ostream.h>
+
 #include <granular_dg/base/errors.h>
 #include <granular_dg/base/simulation.h>
 #include <granular_dg/dg/dg_operator.h>
@@ -350,8 +352,9 @@ namespace granular_dg
 
     // an optional, so that a failed run can destroy it before throwing: a
     // TimerOutput destroyed during stack unwinding prints an MPI warning
+    ConditionalOStream         timer_out(std::cout, Utilities::MPI::this_mpi_process(comm) == 0);
     std::optional<TimerOutput> timer_storage;
-    timer_storage.emplace(comm, std::cout, TimerOutput::never, TimerOutput::wall_times);
+    timer_storage.emplace(comm, timer_out, TimerOutput::never, TimerOutput::wall_times);
     TimerOutput &timer = *timer_storage;
 
     const auto output_times = internal::output_schedule(params, scene.start_time);
@@ -647,8 +650,9 @@ namespace granular_dg
                       << " in " << format_duration(result.wall_time_s) << " ("
                       << format_number(result.dof_updates_per_s / 1e6)
                       << " MDoF-stage updates/s in the time loop)" << std::endl;
-            timer.print_wall_time_statistics(comm);
           }
+        // collective: every rank takes part, rank 0 prints
+        timer.print_wall_time_statistics(comm);
       }
     return result;
   }

@@ -85,7 +85,7 @@ namespace granular_dg::dg
                                      const VectorType      &vector)
   {
     reinit(dof_handler);
-    cells.localize(*vector.get_partitioner());
+    cells.localize(dof_handler, vector.get_mpi_communicator());
   }
 
   template <int dim, typename Physics>
@@ -108,11 +108,9 @@ namespace granular_dg::dg
     if (type == LimiterType::none || n_modes_1d == 1)
       return 0;
 
-    const bool had_ghosts = u.has_ghost_elements();
-    if (!had_ghosts)
-      u.update_ghost_values();
-
-    auto value = [&](const unsigned int cell, const unsigned int c,
+    // neighbours (also ghost cells) are read from g, owned cells written in u
+    const VectorType &g     = cells.with_ghosts(u);
+    auto              value = [&](const unsigned int cell, const unsigned int c,
                      const unsigned int mode) -> double & {
       return u.local_element(cells.index(cell, c, mode));
     };
@@ -120,7 +118,7 @@ namespace granular_dg::dg
     auto average = [&](const unsigned int cell) {
       State avg;
       for (unsigned int c = 0; c < n_components; ++c)
-        avg[c] = value(cell, c, 0);
+        avg[c] = g.local_element(cells.index(cell, c, 0));
       return avg;
     };
     for (auto &b : boundary)
@@ -275,8 +273,6 @@ namespace granular_dg::dg
                 value(i, c, m) = 0.;
             }
       }
-    if (!had_ghosts)
-      u.zero_out_ghost_values();
     return n_troubled;
   }
 } // namespace granular_dg::dg

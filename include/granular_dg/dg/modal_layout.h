@@ -3,6 +3,7 @@
 #include <deal.II/base/partitioner.h>
 #include <deal.II/base/point.h>
 #include <deal.II/dofs/dof_handler.h>
+#include <deal.II/lac/la_parallel_vector.h>
 
 #include <array>
 #include <vector>
@@ -22,9 +23,11 @@ namespace granular_dg::dg
    * Mode m of a cell is the tensor-product index m = sum_d k_d stride(d) of
    * the 1D degrees k_d; mode 0 is the cell average (the orthonormal L_0 = 1 on
    * the unit cell). index() is the global DoF index until localize() turns the
-   * table into local indices of a vector's partitioner (then address entries
-   * with local_element(); ghost neighbours need update_ghost_values()). In a
-   * serial run the two coincide.
+   * table into local indices of the partitioner of the owned and locally
+   * relevant DoFs: address owned cells in any vector of the run with
+   * local_element() (the owned range is the same in MatrixFree's vectors) and
+   * read ghost neighbours from with_ghosts(vector). In a serial run local and
+   * global indices coincide and with_ghosts() is the vector itself.
    */
   template <int dim>
   class ModalLayout
@@ -33,11 +36,15 @@ namespace granular_dg::dg
     void
     reinit(const DoFHandler<dim> &dof_handler);
 
-    /// Turn the index table into local indices of the partitioner (the
-    /// owned range, then the ghosts); every neighbour's entries must be in
-    /// the partitioner's ghost set.
+    /// Turn the index table into local indices of the owned and locally
+    /// relevant DoFs of dof_handler (the ghost neighbours' DoFs included).
     void
-    localize(const Utilities::MPI::Partitioner &partitioner);
+    localize(const DoFHandler<dim> &dof_handler, MPI_Comm comm);
+
+    /// u with the ghost neighbours' entries in the localized numbering: u
+    /// itself in serial, otherwise a copy with exchanged ghost values.
+    const LinearAlgebra::distributed::Vector<double> &
+    with_ghosts(const LinearAlgebra::distributed::Vector<double> &u) const;
 
     unsigned int n_owned() const { return n_owned_cells; }
     unsigned int n_cells() const { return cells.size(); }
@@ -86,5 +93,7 @@ namespace granular_dg::dg
     std::vector<types::boundary_id>                             boundary_ids;
     std::vector<double>                                         extents;
     std::vector<double>                                         at_1, at_0;
+    bool                                                        has_ghosts = false;
+    mutable LinearAlgebra::distributed::Vector<double>          ghosted;
   };
 } // namespace granular_dg::dg

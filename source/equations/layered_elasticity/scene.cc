@@ -163,9 +163,13 @@ namespace granular_dg::elasticity
     class LayeredHooks : public SceneHooks<dim>
     {
     public:
-      LayeredHooks(const System<dim> &system, const bool positivity)
+      /// directory empty: no slice files; slice_y NaN: no slice (2D only)
+      LayeredHooks(const System<dim> &system, const bool positivity, const std::string &directory,
+                   const double slice_y)
         : system(system)
         , positivity(positivity)
+        , directory(directory)
+        , slice_y(slice_y)
       {}
 
       void
@@ -188,6 +192,32 @@ namespace granular_dg::elasticity
             at[2].push_back(L.value(1.));
           }
         n_gauss = q.size();
+
+        // the cells the slice y = slice_y runs through, and the Legendre
+        // values in y there and at p + 2 equally spaced points in x
+        if constexpr (dim == 2)
+          if (std::isfinite(slice_y) && !directory.empty())
+            {
+              for (unsigned int k = 0; k < n1d; ++k)
+                {
+                  const Polynomials::Legendre L(k);
+                  for (unsigned int i = 0; i <= n1d; ++i)
+                    slice_x_values.push_back(L.value(double(i) / n1d));
+                }
+              for (unsigned int c = 0; c < layout->n_owned(); ++c)
+                {
+                  const auto  &cell = layout->cell(c);
+                  const double y0 = cell->vertex(0)[1], hy = layout->extent(c, 1);
+                  if (slice_y >= y0 && slice_y < y0 + hy)
+                    {
+                      slice_cells.push_back(c);
+                      std::vector<double> v;
+                      for (unsigned int k = 0; k < n1d; ++k)
+                        v.push_back(Polynomials::Legendre(k).value((slice_y - y0) / hy));
+                      slice_y_values.push_back(v);
+                    }
+                }
+            }
       }
 
       void
@@ -222,8 +252,11 @@ namespace granular_dg::elasticity
       }
 
       std::vector<double>
-      timeseries_values(const dg::VectorType &U, double) override
+      timeseries_values(const dg::VectorType &U, const double t) override
       {
+        if constexpr (dim == 2)
+          if (std::isfinite(slice_y) && !directory.empty())
+            write_slice(U, t);
         const auto d = diagnose(U);
         return {d.min_strain, d.max_strain, d.stress_jump_max, d.stress_jump_mean,
                 d.velocity_jump_max};
@@ -255,6 +288,50 @@ namespace granular_dg::elasticity
         double min_strain = 0, max_strain = 0, stress_jump_max = 0, stress_jump_mean = 0,
                velocity_jump_max = 0;
       };
+
+      /// slice-NNNN.csv: strain, stress and velocity along y = slice_y (all
+      /// ranks' cells gathered on rank 0, sorted by x)
+      void
+      write_slice(const dg::VectorType &U, const double t)
+      {
+        const unsigned int  n1d = layout->degree() + 1;
+        std::vector<double> rows; // x, strain, stress, u, v
+        for (unsigned int s = 0; s < slice_cells.size(); ++s)
+          {
+            const unsigned int c  = slice_cells[s];
+            const double       x0 = layout->cell(c)->vertex(0)[0], hx = layout->extent(c, 0);
+            const auto         a  = system.coefficients(layout->cell(c)->material_id());
+            for (unsigned int i = 0; i <= n1d; ++i)
+              {
+                std::vector<double> xv(n1d);
+                for (unsigned int k = 0; k < n1d; ++k)
+                  xv[k] = slice_x_values[k * (n1d + 1) + i];
+                std::array<const double *, dim> v{{xv.data(), slice_y_values[s].data()}};
+                const double eps = evaluate(U, c, 0, v);
+                rows.insert(rows.end(), {x0 + hx * i / n1d, eps, system.stress(eps, a),
+                                         evaluate(U, c, 1, v) / a[density],
+                                         evaluate(U, c, 2, v) / a[density]});
+              }
+          }
+        const MPI_Comm comm = U.get_mpi_communicator();
+        const auto     all  = Utilities::MPI::gather(comm, rows, 0);
+        if (Utilities::MPI::this_mpi_process(comm) == 0)
+          {
+            std::vector<std::array<double, 5>> sorted;
+            for (const auto &part : all)
+              for (unsigned int i = 0; i + 4 < part.size(); i += 5)
+                sorted.push_back({{part[i], part[i + 1], part[i + 2], part[i + 3], part[i + 4]}});
+            std::stable_sort(sorted.begin(), sorted.end(),
+                             [](const auto &a, const auto &b) { return a[0] < b[0]; });
+            CsvWriter csv;
+            csv.open(directory + "/slice-" + Utilities::int_to_string(n_slices, 4) + ".csv",
+                     {"x", "strain", "stress", "velocity_x", "velocity_y"},
+                     "time = " + format_number(t) + ", y = " + format_number(slice_y));
+            for (const auto &r : sorted)
+              csv.row(std::vector<double>(r.begin(), r.end()));
+          }
+        ++n_slices;
+      }
 
       /// value of component i of cell c at the tensor point with 1D Legendre
       /// values v[d] in direction d
@@ -304,9 +381,10 @@ namespace granular_dg::elasticity
       }
 
       Diagnosis
-      diagnose(const dg::VectorType &U) const
+      diagnose(const dg::VectorType &solution) const
       {
-        U.update_ghost_values();
+        // the neighbours' traces: ghost cells included
+        const dg::VectorType &U = layout->with_ghosts(solution);
         Diagnosis          r;
         double             low = std::numeric_limits<double>::max(), high = -low;
         double             jump_sum = 0, count = 0;
@@ -339,7 +417,6 @@ namespace granular_dg::elasticity
                 count += 1;
               }
           }
-        U.zero_out_ghost_values();
         const MPI_Comm comm = U.get_mpi_communicator();
         r.min_strain        = Utilities::MPI::min(low, comm);
         r.max_strain        = Utilities::MPI::max(high, comm);
@@ -353,6 +430,12 @@ namespace granular_dg::elasticity
 
       const System<dim>           system;
       const bool                  positivity;
+      const std::string           directory;
+      const double                slice_y;
+      std::vector<unsigned int>        slice_cells;
+      std::vector<std::vector<double>> slice_y_values;
+      std::vector<double>              slice_x_values;
+      unsigned int                     n_slices = 0;
       const dg::ModalLayout<dim> *layout  = nullptr;
       unsigned int                n_gauss = 1;
       std::vector<double>         gauss;
@@ -429,6 +512,12 @@ namespace granular_dg::elasticity
                         "from its final state); 0: never.");
       prm.leave_subsection();
 
+      prm.enter_subsection("Output");
+      prm.declare_entry("slice y", "", Patterns::Anything(),
+                        "2D: write slice-NNNN.csv (strain, stress, velocity along the line "
+                        "y = this value) at every output time; empty: none.");
+      prm.leave_subsection();
+
       prm.enter_subsection("Limiter");
       prm.declare_entry("strain positivity", "false", Patterns::Bool(),
                         "Scale the higher strain modes after every stage so that eps >= 0 "
@@ -502,10 +591,12 @@ namespace granular_dg::elasticity
         make_function<dim>(all, names, time_dependent), system, layers, stress_given);
     }
 
-    /// force_periodic_x: the second part of a run with "periodic from".
+    /// force_periodic_x: the second part of a run with "periodic from";
+    /// output_directory: where the scene's own files go (empty: none).
     template <int dim>
     SceneData<dim, System<dim>>
-    make_scene(ParameterHandler &prm, const int cells_override, const bool force_periodic_x = false)
+    make_scene(ParameterHandler &prm, const int cells_override, const std::string &output_directory,
+               const bool force_periodic_x = false)
     {
       prm.enter_subsection("Physics");
       const StressLaw law = law_names.parse("Physics/stress law", prm.get("stress law"));
@@ -638,7 +729,22 @@ namespace granular_dg::elasticity
       prm.enter_subsection("Limiter");
       const bool positivity = prm.get_bool("strain positivity");
       prm.leave_subsection();
-      scene.hooks = std::make_shared<LayeredHooks<dim>>(scene.physics, positivity);
+      prm.enter_subsection("Output");
+      const std::string slice = Utilities::trim(prm.get("slice y"));
+      prm.leave_subsection();
+      double slice_y = std::numeric_limits<double>::quiet_NaN();
+      if (!slice.empty())
+        {
+          char *end = nullptr;
+          slice_y   = std::strtod(slice.c_str(), &end);
+          require(dim == 2 && end != slice.c_str() && *end == '\0' && slice_y >= lo[1] &&
+                    slice_y < hi[1],
+                  "Output/slice y", slice,
+                  "empty, or in 2D a number in [y min, y max) = [" + format_number(lo[1]) +
+                    ", " + format_number(hi[1]) + ")");
+        }
+      scene.hooks = std::make_shared<LayeredHooks<dim>>(scene.physics, positivity,
+                                                        output_directory, slice_y);
       return scene;
     }
 
@@ -650,7 +756,10 @@ namespace granular_dg::elasticity
       const double periodic_from = prm.get_double("periodic from");
       prm.leave_subsection();
       // build (and so validate) everything before anything is written
-      auto scene = make_scene<dim>(prm, common.convergence ? common.convergence_cells.front() : 0);
+      const std::string directory = common.convergence ? "" : common.directory;
+      auto              scene     = make_scene<dim>(
+        prm, common.convergence ? common.convergence_cells.front() : 0,
+        periodic_from > 0 ? common.directory + "/before-periodic" : directory);
       if (common.convergence)
         require(static_cast<bool>(scene.exact), "Exact solution/available", "false",
                 "true: a convergence study needs the exact solution");
@@ -665,12 +774,12 @@ namespace granular_dg::elasticity
           require(prm.get("left") != "periodic", "Boundary conditions/periodic from",
                   periodic_from, "0 when left and right are periodic from the start");
           prm.leave_subsection();
-          make_scene<dim>(prm, 0, true); // validates the second part too
+          make_scene<dim>(prm, 0, "", true); // validates the second part too
         }
       begin_output(prm, common);
       if (common.convergence)
         run_convergence_study<dim, System<dim>>(
-          [&](unsigned int cells) { return make_scene<dim>(prm, cells); }, common);
+          [&](unsigned int cells) { return make_scene<dim>(prm, cells, ""); }, common);
       else if (periodic_from > 0)
         {
           CommonParameters first = common;
@@ -687,7 +796,7 @@ namespace granular_dg::elasticity
             std::cout << "  part 1: t in [0, " << format_number(periodic_from)
                       << "] with the boundary conditions of the file" << std::endl;
           const auto before = run_simulation(scene, first, common.degree, true);
-          auto       after  = make_scene<dim>(prm, 0, true);
+          auto       after  = make_scene<dim>(prm, 0, common.directory, true);
           after.start_time     = periodic_from;
           after.initial_vector = before.final_solution;
           if (Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) == 0)
