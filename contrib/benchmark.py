@@ -47,9 +47,11 @@ def load():
         return " ".join(f.read().split()[:3])
 
 
-def run_ours(build, out, name, degree, quick, ranks=1):
+def run_ours(build, out, name, degree, quick, ranks=1, reuse=False):
     prm, dim, extra = CASES[name]
     d = os.path.join(out, "%s-p%d%s" % (name, degree, "-np%d" % ranks if ranks > 1 else ""))
+    if reuse and os.path.exists(os.path.join(d, "benchmark.json")):
+        return read_ours(d, name, dim, degree, ranks)
     cmd = [os.path.join(build, "granular_dg"), "--benchmark", os.path.join(ROOT, prm),
            "--set", "Output/directory=" + d, "--set", "Discretization/degree=%d" % degree,
            "--set", "Benchmark/minimum time=%g" % (0.05 if quick else 0.3),
@@ -63,6 +65,10 @@ def run_ours(build, out, name, degree, quick, ranks=1):
     if p.returncode != 0:
         print("FAILED %s p%d: %s" % (name, degree, (p.stderr or p.stdout).strip()[-300:]))
         return None
+    return read_ours(d, name, dim, degree, ranks)
+
+
+def read_ours(d, name, dim, degree, ranks):
     with open(os.path.join(d, "benchmark.json")) as f:
         b = json.load(f)
     return {"code": "granular_dg", "case": name, "dim": dim, "degree": degree, "ranks": ranks,
@@ -100,9 +106,12 @@ def patch_step67(src, dim, degree, refinements, steps):
     return s
 
 
-def run_step67(build, dim, degree, refinements, steps):
+def run_step67(build, dim, degree, refinements, steps, reuse=False):
     d = os.path.join(os.path.abspath(build), "step67-%dd-p%d" % (dim, degree))
     exe = os.path.join(d, "step-67")
+    if reuse and os.path.exists(os.path.join(d, "result.json")):
+        with open(os.path.join(d, "result.json")) as f:
+            return json.load(f)
     if not os.path.exists(exe):
         os.makedirs(d, exist_ok=True)
         with open(STEP67) as f:
@@ -125,11 +134,14 @@ def run_step67(build, dim, degree, refinements, steps):
             best = (n_dofs, n_steps, stages, cpu, wall)
     n_dofs, n_steps, stages, cpu, wall = best
     rate = n_dofs * stages * n_steps / cpu / 1e6
-    return {"code": "step-67", "case": "euler_vortex_%dd" % dim, "dim": dim, "degree": degree, "ranks": 1,
+    r = {"code": "step-67", "case": "euler_vortex_%dd" % dim, "dim": dim, "degree": degree, "ranks": 1,
             "engine": "matrix_free", "n_dofs": n_dofs, "steps": n_steps,
             "cpu_us_per_step": 1e6 * cpu / n_steps, "mdofs_step": rate, "mdofs_rk": rate,
             "mdofs_wall": n_dofs * stages * n_steps / wall / 1e6,
             "load_before": before, "load_after": load()}
+    with open(os.path.join(d, "result.json"), "w") as f:
+        json.dump(r, f)
+    return r
 
 
 FIELDS = ["code", "case", "dim", "degree", "ranks", "engine", "n_dofs", "steps", "cpu_us_per_step",
@@ -168,20 +180,21 @@ def main():
     ap.add_argument("--step67-degrees", default="1,2,3,4")
     ap.add_argument("--cases", default=",".join(CASES))
     ap.add_argument("--mpi", action="store_true", help="also layered_2d on 2 ranks (p = 2, 3)")
+    ap.add_argument("--reuse", action="store_true", help="take runs with a result already there")
     a = ap.parse_args()
     os.makedirs(a.out, exist_ok=True)
     degrees = [int(x) for x in a.degrees.split(",")]
     rows = []
-    for name in a.cases.split(","):
+    for name in [c for c in a.cases.split(",") if c]:
         for p in degrees:
-            r = run_ours(a.build, a.out, name, p, a.quick)
+            r = run_ours(a.build, a.out, name, p, a.quick, reuse=a.reuse)
             if r:
                 rows.append(r)
                 print(r, flush=True)
                 write_tables(a.out, rows)
     if a.mpi:
         for p in (2, 3):
-            r = run_ours(a.build, a.out, "layered_2d", p, a.quick, ranks=2)
+            r = run_ours(a.build, a.out, "layered_2d", p, a.quick, ranks=2, reuse=a.reuse)
             if r:
                 rows.append(r)
                 print(r, flush=True)
@@ -189,7 +202,7 @@ def main():
         # 2D: [0,10] x [-5,5], 4 x 2^refinements cells per direction: 128^2
         # cells, as many DoFs as the 2D strip (0.3-1.2 M)
         for p in [int(x) for x in a.step67_degrees.split(",")]:
-            r = run_step67(a.build, 2, p, 5, 20 if a.quick else 60)
+            r = run_step67(a.build, 2, p, 5, 20 if a.quick else 60, reuse=a.reuse)
             rows.append(r)
             print(r, flush=True)
             write_tables(a.out, rows)
