@@ -95,7 +95,9 @@ SCENES = {
     "layered_1d": dict(
         prm="prm/elasticity_linear_wave.prm", mesh="Mesh/cells x",
         cells=[8, 16, 32, 64, 128, 256], quick_cells=[8, 16, 32],
-        degrees=[0, 1, 2, 3, 4], quick_degrees=[1, 2], cfl=lambda p: 0.9 / (2 * p + 1),
+        degrees=[0, 1, 2, 3, 4], quick_degrees=[1, 2],
+        # 0.9/(2p+1), but P4 blows up there (its limit is ~0.09): 0.07
+        cfl=lambda p: 0.07 if p == 4 else 0.9 / (2 * p + 1),
         error=sum_l1, error_name="L1 error (strain + velocity) at t = 1",
         targets=[1e-4, 1e-7], stability=dict(cells=32), extra=[]),
     # the 2D strip scene on the same wave, 2 cells across in y (periodic)
@@ -196,8 +198,7 @@ def work_precision(build, out, name, sc, quick):
     for ax, key, label in ((axes[0], "time_loop_cpu_s", "CPU time of the time loop [s]"),
                            (axes[1], "run_wall_s", "wall time of the run [s]")):
         for p in degrees:
-            sel = [r for r in rows if r["degree"] == p and r["exit"] == 0 and r["error"] > 0
-                   and math.isfinite(r["error"])]
+            sel = [r for r in rows if r["degree"] == p and r["exit"] == 0 and 0 < r["error"] <= 1]
             if sel:
                 ax.loglog([max(r[key], 1e-4) for r in sel], [r["error"] for r in sel], "o-",
                           ms=4, label="P%d" % p)
@@ -319,7 +320,8 @@ def write_csv(path, rows):
 def cheapest(out, all_rows):
     res = []
     for name, sc in SCENES.items():
-        rows = [r for r in all_rows if r["scene"] == name and r["exit"] == 0 and math.isfinite(r["error"])]
+        # completed runs that did not blow up (error <= 1)
+        rows = [r for r in all_rows if r["scene"] == name and r["exit"] == 0 and r["error"] <= 1]
         if not rows:
             continue
         for t in sc["targets"]:
