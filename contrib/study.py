@@ -21,12 +21,16 @@ and its values, the degrees, the CFL number used for the work-precision runs
 summary.json, the two target errors, and the mesh and CFL grid of the
 stability map (None: no map).
 
-Classification of a stability run (fixed mesh, to the final time), with
-e0 = the error of the same degree at the smallest CFL of the grid:
+Classification of a stability run (fixed mesh, to the final time):
   blown up      exit 2 with a non-finite state, or an error > 1 (the data are O(0.1-1));
   inadmissible  exit 2 naming another admissibility test (e.g. negative strain);
-  oscillatory   completed, error > 2 e0 (instability growing, or limiter-held);
-  stable        completed, error <= 2 e0.
+  oscillatory   completed, but: for an energy-stable case (stability energy=True:
+                the linear wave with the dissipative LLF flux) the discrete energy
+                grew; otherwise (the limited column, whose energy is fed by the
+                wall) the error is > 2 e0, e0 = the error of the same degree at the
+                smallest CFL of the grid (the limiter holds the run bounded, the
+                instability shows as lost accuracy);
+  stable        completed, otherwise.
 The limit is the largest stable CFL, bisected between the largest stable and
 the smallest non-stable grid value (relative width 2 % full, 8 % quick).
 """
@@ -99,7 +103,7 @@ SCENES = {
         # 0.9/(2p+1), but P4 blows up there (its limit is ~0.09): 0.07
         cfl=lambda p: 0.07 if p == 4 else 0.9 / (2 * p + 1),
         error=sum_l1, error_name="L1 error (strain + velocity) at t = 1",
-        targets=[1e-4, 1e-7], stability=dict(cells=32), extra=[]),
+        targets=[1e-4, 1e-7], stability=dict(cells=32, energy=True), extra=[]),
     # the 2D strip scene on the same wave, 2 cells across in y (periodic)
     "layered_2d": dict(
         prm="prm/elasticity_linear_wave.prm", mesh="Mesh/cells x",
@@ -224,7 +228,15 @@ def work_precision(build, out, name, sc, quick):
     return rows
 
 
-def classify(code, err, e, e0):
+def energy_grew(d):
+    """Whether the discrete energy (timeseries.csv) grew from t = 0 to the end."""
+    with open(os.path.join(d, "timeseries.csv")) as f:
+        rows = list(csv.DictReader(l for l in f if not l.startswith("#")))
+    e_first, e_last = float(rows[0]["energy"]), float(rows[-1]["energy"])
+    return not (e_last <= e_first * (1 + 1e-10))
+
+
+def classify(code, err, e, e0, grew=None):
     if code == 2:
         low = err.lower()
         if "finite" in low or "nan" in low or "inf" in low:
@@ -234,6 +246,8 @@ def classify(code, err, e, e0):
         return "failed"
     if not math.isfinite(e) or e > 1:
         return "blown up"
+    if grew is not None:  # energy-stable scheme: growth is the instability
+        return "oscillatory" if grew else "stable"
     if e0 is not None and e > 2 * e0:
         return "oscillatory"
     return "stable"
@@ -250,7 +264,8 @@ def stability(build, out, name, sc, quick):
             "Discretization/degree=%d" % p, "%s=%d" % (sc["mesh"], sc["stability"]["cells"]),
             "Time stepping/CFL number=%.12g" % cfl])
         e = sc["error"](s, d) if code == 0 else float("nan")
-        c = classify(code, err, e, e0)
+        grew = energy_grew(d) if code == 0 and sc["stability"].get("energy") else None
+        c = classify(code, err, e, e0, grew)
         rows.append(dict(scene=name, degree=p, cfl=cfl, exit=code, error=e, state=c,
                          time_loop_cpu_s=cpu_loop(s), message=err[:200]))
         print("%s stability P%d CFL %.4g: %s (error %.3e)" % (name, p, cfl, c, e), flush=True)
