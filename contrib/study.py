@@ -30,7 +30,9 @@ Classification of a stability run (fixed mesh, to the final time):
                 wall) the error is > 2 e0, e0 = the error of the same degree at the
                 smallest CFL of the grid (the limiter holds the run bounded, the
                 instability shows as lost accuracy);
-  stable        completed, otherwise.
+  stable        completed, otherwise;
+  refused       exit 1: the program's input check refuses the CFL number
+                (lead's require_stable_cfl, newer than this study's runs).
 The limit is the largest stable CFL, bisected between the largest stable and
 the smallest non-stable grid value (relative width 2 % full, 8 % quick).
 """
@@ -242,6 +244,8 @@ def classify(code, err, e, e0, grew=None):
         if "finite" in low or "nan" in low or "inf" in low:
             return "blown up"
         return "inadmissible"
+    if code == 1:  # bad input: the program refuses a CFL above its built-in limit
+        return "refused"
     if code != 0:
         return "failed"
     if not math.isfinite(e) or e > 1:
@@ -300,8 +304,8 @@ def stability(build, out, name, sc, quick):
                            state_above=first_bad[0] if first_bad else "none up to CFL 1"))
     write_csv(os.path.join(out, name + "-stability.csv"), rows)
     colors = {"stable": "tab:green", "oscillatory": "tab:orange", "inadmissible": "tab:purple",
-              "blown up": "tab:red", "failed": "black"}
-    markers = {"stable": "o", "oscillatory": "s", "inadmissible": "D", "blown up": "x", "failed": "+"}
+              "blown up": "tab:red", "refused": "gray", "failed": "black"}
+    markers = {"stable": "o", "oscillatory": "s", "inadmissible": "D", "blown up": "x", "refused": "_", "failed": "+"}
     fig, ax = plt.subplots(figsize=(7, 4))
     for state in colors:
         sel = [r for r in rows if r["state"] == state]
