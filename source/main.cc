@@ -113,6 +113,8 @@ namespace
       << " - explicit DG for granular and layered media\n\n"
          "Usage:\n"
          "  granular_dg CASE.prm [--set Section/name=value ...]   run a case\n"
+         "  granular_dg --benchmark CASE.prm [--set ...]           time the steps of a case\n"
+         "                                                         (benchmark.json; doc/performance.md)\n"
          "  granular_dg --print-parameters SCENE                   all parameters of a scene,\n"
          "                                                         with defaults and documentation\n"
          "  granular_dg --version | --help\n\n"
@@ -172,6 +174,8 @@ main(int argc, char **argv)
                 throw InputError("--set needs an argument Section/name=value");
               overrides.push_back(args[++i]);
             }
+          else if (a == "--benchmark")
+            overrides.push_back("Benchmark/enabled=true");
           else if (a.rfind("--set=", 0) == 0)
             overrides.push_back(a.substr(6));
           else if (a.rfind("-", 0) == 0)

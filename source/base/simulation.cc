@@ -109,6 +109,10 @@ namespace granular_dg
     prm.declare_entry("CFL number", "0.2", Patterns::Double(),
                       "Courant number dt * sum_d(lambda_max / h_d). SSP-RK3 with DG "
                       "of degree p is stable up to about 1/(2p+1). Allowed: (0, 1].");
+    prm.declare_entry("check stability limit", "true", Patterns::Bool(),
+                      "Refuse a CFL number above SSP-RK3's linear stability limit for the "
+                      "degree (1.256, 0.4095, 0.2097, 0.13, 0.0896 for p = 0-4). false: "
+                      "run anyway, for stability studies of where the method fails.");
     prm.leave_subsection();
 
     prm.enter_subsection("Limiter");
@@ -159,6 +163,24 @@ namespace granular_dg
     prm.declare_entry("cells", "16,32,64,128", Patterns::List(Patterns::Integer(1)),
                       "Numbers of cells (per direction) of the study, coarse to fine.");
     prm.leave_subsection();
+
+    prm.enter_subsection("Benchmark");
+    prm.declare_entry("enabled", "false", Patterns::Bool(),
+                      "Time the steps instead of running to the final time (also "
+                      "granular_dg --benchmark CASE.prm): warm-up steps, then repetitions "
+                      "of a block of steps; writes benchmark.json (CPU time per step, "
+                      "DoF-stage updates per second per core, the phases of a step) and "
+                      "no snapshots. doc/performance.md.");
+    prm.declare_entry("repetitions", "5", Patterns::Integer(1),
+                      "Number of timed blocks (min and median are reported).");
+    prm.declare_entry("steps", "0", Patterns::Integer(0),
+                      "Steps per block; 0: doubled from 1 until a block takes the "
+                      "minimum time.");
+    prm.declare_entry("minimum time", "0.3", Patterns::Double(0),
+                      "CPU seconds a calibrated block lasts at least.");
+    prm.declare_entry("warm-up steps", "2", Patterns::Integer(0),
+                      "Untimed steps before the calibration.");
+    prm.leave_subsection();
   }
 
   void
@@ -173,6 +195,7 @@ namespace granular_dg
     prm.enter_subsection("Time stepping");
     final_time = prm.get_double("final time");
     cfl        = prm.get_double("CFL number");
+    const bool check_stability_limit = prm.get_bool("check stability limit");
     prm.leave_subsection();
     require(final_time > 0, "Time stepping/final time", final_time, "must be > 0");
     require(cfl > 0 && cfl <= 1, "Time stepping/CFL number", cfl,
@@ -213,10 +236,20 @@ namespace granular_dg
     // hundred steps (or, with a limiter, silently lose accuracy); a
     // convergence study needs it for every degree of the study, unless the
     // scene takes one CFL number per degree (Convergence/CFL numbers)
-    if (!(convergence && convergence_has_own_cfl(prm)))
+    if (check_stability_limit && !(convergence && convergence_has_own_cfl(prm)))
       for (const unsigned int p : convergence ? convergence_degrees :
                                                 std::vector<unsigned int>{degree})
         require_stable_cfl(cfl, p, "Time stepping/CFL number");
+
+    prm.enter_subsection("Benchmark");
+    benchmark.enabled      = prm.get_bool("enabled");
+    benchmark.repetitions  = prm.get_integer("repetitions");
+    benchmark.steps        = prm.get_integer("steps");
+    benchmark.min_time     = prm.get_double("minimum time");
+    benchmark.warmup_steps = prm.get_integer("warm-up steps");
+    prm.leave_subsection();
+    require(!(benchmark.enabled && convergence), "Benchmark/enabled", "true",
+            "false when Convergence/enabled is true");
   }
 
   void

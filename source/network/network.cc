@@ -8,7 +8,9 @@
 #include <granular_dg/network/network.h>
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
+#include <optional>
 
 namespace granular_dg::network
 {
@@ -313,11 +315,17 @@ namespace granular_dg::network
   void
   NetworkProblem::apply(const double time, const NetworkState &src, NetworkState &dst) const
   {
+    std::optional<StepPhases::Scope> coupling(std::in_place, phases, StepPhases::coupling);
     const auto traces = vertex_traces(src);
     const double u0   = vertex->width() > 0 ? src.vertex : vertex->balance(traces, time);
     vertex_data->u0   = u0;
-    for (unsigned int k = 0; k < edge.size(); ++k)
-      edge[k]->op->apply(time, src.edges[k], dst.edges[k]);
+    coupling.reset();
+    {
+      StepPhases::Scope scope(phases, StepPhases::operator_apply);
+      for (unsigned int k = 0; k < edge.size(); ++k)
+        edge[k]->op->apply(time, src.edges[k], dst.edges[k]);
+    }
+    coupling.emplace(phases, StepPhases::coupling);
     dst.vertex = vertex->rate(traces, u0);
     stage_inflow.push_back(far_end_inflow(time, src));
   }
@@ -325,12 +333,16 @@ namespace granular_dg::network
   void
   NetworkProblem::post_stage(NetworkState &s, const double stage_time)
   {
-    vertex_data->u0 =
-      vertex->width() > 0 ? s.vertex : vertex->balance(vertex_traces(s), stage_time);
-    for (unsigned int k = 0; k < edge.size(); ++k)
-      edge[k]->limiter->apply(s.edges[k], stage_time);
-    if (vertex->width() == 0)
-      s.vertex = vertex->balance(vertex_traces(s), stage_time);
+    {
+      StepPhases::Scope scope(phases, StepPhases::limiter);
+      vertex_data->u0 =
+        vertex->width() > 0 ? s.vertex : vertex->balance(vertex_traces(s), stage_time);
+      for (unsigned int k = 0; k < edge.size(); ++k)
+        edge[k]->limiter->apply(s.edges[k], stage_time);
+      if (vertex->width() == 0)
+        s.vertex = vertex->balance(vertex_traces(s), stage_time);
+    }
+    StepPhases::Scope scope(phases, StepPhases::admissibility);
 
     if (!std::isfinite(s.vertex))
       throw StateFailure{stage_time, -1, 0., s.vertex, "vertex value is not finite"};
@@ -366,6 +378,8 @@ namespace granular_dg::network
   void
   NetworkProblem::step(const double dt)
   {
+    const double before = phases ? phases->total() : 0.;
+    const auto   start  = std::chrono::steady_clock::now();
     stage_inflow.clear();
     if (n_stages() == 1)
       {
@@ -385,6 +399,11 @@ namespace granular_dg::network
     t += dt;
     dt_last = dt;
     ++steps;
+    // what is neither operator, coupling nor post-stage work: the vector updates
+    if (phases)
+      phases->seconds[StepPhases::vector_updates] +=
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() -
+        (phases->total() - before);
   }
 
   double

@@ -334,6 +334,53 @@ namespace granular_dg::network
         }
       timeseries.row(row);
     };
+    if (params.benchmark.enabled)
+      {
+        const std::string load = load_average();
+        NetworkState      copy;
+        std::vector<BenchmarkRepetition> reps;
+        try
+          {
+            reps = run_benchmark(params.benchmark, [&](StepPhases *ph) {
+              p.set_phases(ph);
+              {
+                StepPhases::Scope scope(ph, StepPhases::state_copy);
+                copy = p.state();
+              }
+              double dt_step;
+              {
+                StepPhases::Scope scope(ph, StepPhases::time_step);
+                dt_step = p.time_step();
+              }
+              if (!(std::isfinite(dt_step) && dt_step > 0))
+                throw RunError("benchmark: time step is " + format_number(dt_step));
+              p.step(dt_step);
+              // the per-step diagnostics of the time loop
+              StepPhases::Scope scope(ph, StepPhases::end_of_step_hook);
+              balance.update(p);
+              tv_max = std::max(tv_max, p.total_variation());
+            });
+          }
+        catch (const StateFailure &f)
+          {
+            throw RunError("benchmark: " + failure_message(f, p.n_steps(), graph));
+          }
+        p.set_phases(nullptr);
+        JsonObject c;
+        c.add("scene", scene);
+        c.add("physics", System::name);
+        c.add("dim", 1ll);
+        c.add("degree", discretisation.degree);
+        c.add("engine", "matrix_free");
+        c.add("n_cells", static_cast<long long>(result.n_cells));
+        c.add("n_edges", static_cast<long long>(graph.edges.size()));
+        c.add("limiter", static_cast<long long>(discretisation.limiter));
+        write_benchmark(params.directory, c, reps, result.n_dofs, p.n_stages(), load);
+        result.status  = "benchmark";
+        result.n_steps = p.n_steps();
+        return result;
+      }
+
     record();
 
     Progress     progress(0., params.final_time, write_files ? params.progress_interval : 0.);

@@ -6,6 +6,7 @@
 #include <deal.II/fe/mapping.h>
 #include <deal.II/grid/tria.h>
 
+#include <granular_dg/base/benchmark.h>
 #include <granular_dg/base/output.h>
 #include <granular_dg/dg/boundary.h>
 #include <granular_dg/dg/limiter.h>
@@ -50,6 +51,8 @@ namespace granular_dg
     bool                      convergence = false;
     std::vector<unsigned int> convergence_degrees;
     std::vector<unsigned int> convergence_cells;
+
+    BenchmarkParameters benchmark;
 
     /// Declare the shared sections; fluxes lists the numerical fluxes the
     /// scene's physics offers.

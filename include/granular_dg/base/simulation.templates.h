@@ -23,7 +23,9 @@
 #include <granular_dg/dg/time_integrator.h>
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
+#include <type_traits>
 #include <iomanip>
 #include <iostream>
 #include <sstream>
@@ -276,6 +278,22 @@ namespace granular_dg
       dg::AdmissibilityReport report;
       bool                    initial = false;
     };
+
+    /// The operator as the integrator sees it: apply() charged to the
+    /// operator phase of the current step (nothing when phases is null).
+    template <typename Operator>
+    struct TimedOperator
+    {
+      const Operator    &op;
+      StepPhases *const &phases;
+
+      void
+      apply(const double t, const dg::VectorType &src, dg::VectorType &dst) const
+      {
+        StepPhases::Scope scope(phases, StepPhases::operator_apply);
+        op.apply(t, src, dst);
+      }
+    };
   } // namespace internal
 
   namespace internal
@@ -404,13 +422,38 @@ namespace granular_dg
         timeseries.row(row);
     };
 
-    auto post_stage = [&](dg::VectorType &u, const double stage_time, const double weight) {
-      hooks.post_stage(u, stage_time, weight);
-      troubled = limiter.apply(u, stage_time);
-      hooks.post_limiter(u, stage_time);
-      const auto report = op.check_admissibility(u);
+    // the phases of a step are timed in benchmark mode only (phases != nullptr)
+    StepPhases *phases     = nullptr;
+    auto        post_stage = [&](dg::VectorType &u, const double stage_time, const double weight) {
+      {
+        StepPhases::Scope scope(phases, StepPhases::post_stage_hook);
+        hooks.post_stage(u, stage_time, weight);
+      }
+      {
+        StepPhases::Scope scope(phases, StepPhases::limiter);
+        troubled = limiter.apply(u, stage_time);
+      }
+      {
+        StepPhases::Scope scope(phases, StepPhases::post_limiter_hook);
+        hooks.post_limiter(u, stage_time);
+      }
+      StepPhases::Scope scope(phases, StepPhases::admissibility);
+      const auto        report = op.check_admissibility(u);
       if (!report.ok)
         throw internal::Inadmissible{stage_time, report};
+    };
+    const internal::TimedOperator<Operator> timed_op{op, phases};
+    // one Runge-Kutta step; what is neither operator nor post-stage work is
+    // charged to the vector updates
+    auto rk_step = [&](const double dt_step) {
+      if (!phases)
+        return integrator.step(timed_op, solution, t, dt_step, post_stage);
+      const double before = phases->total();
+      const auto   start  = std::chrono::steady_clock::now();
+      integrator.step(timed_op, solution, t, dt_step, post_stage);
+      const double elapsed =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+      phases->seconds[StepPhases::vector_updates] += elapsed - (phases->total() - before);
     };
 
     if (write_files && root)
@@ -419,6 +462,59 @@ namespace granular_dg
                 << "; output to " << params.directory << "/ (solution.pvd"
                 << (dim == 1 ? ", profile-NNNN.csv" : "")
                 << ", timeseries.csv, summary.json)" << std::endl;
+
+    if (params.benchmark.enabled)
+      {
+        const auto report = op.check_admissibility(solution);
+        if (!report.ok)
+          throw RunError("benchmark: inadmissible initial state: " + report.reason);
+        const std::string load = load_average();
+        try
+          {
+            const auto reps = run_benchmark(params.benchmark, [&](StepPhases *ph) {
+              phases = ph;
+              {
+                StepPhases::Scope scope(ph, StepPhases::state_copy);
+                last_good = solution;
+              }
+              double speed;
+              {
+                StepPhases::Scope scope(ph, StepPhases::time_step);
+                speed = op.max_speed_over_h(solution, scene.min_wave_speed);
+              }
+              dt = dt_factor * params.cfl / speed;
+              if (!(std::isfinite(dt) && dt > 0))
+                throw RunError("benchmark: time step is " + format_number(dt));
+              rk_step(dt);
+              t += dt;
+              ++step;
+              StepPhases::Scope scope(ph, StepPhases::end_of_step_hook);
+              hooks.end_of_step(solution, t, dt, step);
+            });
+            JsonObject c;
+            c.add("scene", scene.scene);
+            c.add("physics", Physics::name);
+            c.add("dim", static_cast<long long>(dim));
+            c.add("degree", degree);
+            c.add("engine", std::is_same_v<Operator, dg::DGOperator<dim, Physics>> ?
+                              "matrix_free" :
+                              "line");
+            c.add("n_cells", static_cast<long long>(result.n_cells));
+            c.add("limiter", static_cast<long long>(params.limiter));
+            write_benchmark(params.directory, c, reps, result.n_dofs, dg::SSPRK3<>::n_stages,
+                            load);
+          }
+        catch (const internal::Inadmissible &failure)
+          {
+            throw RunError("benchmark: inadmissible state at " + scene.time_name + " = " +
+                           format_number(failure.time) + ": " + failure.report.reason);
+          }
+        result.status     = "benchmark";
+        result.n_steps    = step;
+        result.final_time = t;
+        timer_storage.reset();
+        return result;
+      }
 
     record();
     Progress progress(scene.start_time, params.final_time,
@@ -454,7 +550,7 @@ namespace granular_dg
             {
               TimerOutput::Scope scope(timer, "time stepping");
               loop_timer.start();
-              integrator.step(op, solution, t, dt, post_stage);
+              rk_step(dt);
               loop_timer.stop();
             }
             t = lands ? output_times[next_output] : t + dt;

@@ -19,6 +19,7 @@
 #include <cmath>
 #include <functional>
 #include <limits>
+#include <type_traits>
 #include <vector>
 
 namespace granular_dg::dg
@@ -166,13 +167,7 @@ namespace granular_dg::dg
     max_speed_over_h(const LinearAlgebra::distributed::Vector<double> &u,
                      const double                                      min_speed = 0.) const
     {
-      double result = 0;
-      for (unsigned int c = 0; c < n_cells; ++c)
-        for (unsigned int q = 0; q < n_q; ++q)
-          result = std::max(result, std::max(phys.max_wave_speed(state_at(u, c, q), coefficients[c]),
-                                             min_speed) /
-                                      h[c]);
-      return result;
+      return dispatch([&](auto nm) { return max_speed_impl<decltype(nm)::value>(u.begin(), min_speed); });
     }
 
     std::array<double, n_components>
@@ -224,7 +219,10 @@ namespace granular_dg::dg
     check_admissibility(const LinearAlgebra::distributed::Vector<double> &u) const
     {
       AdmissibilityReport report;
-      for (unsigned int c = 0; c < n_cells; ++c)
+      // the fast scan (mode loops unrolled); the report from the first failure
+      const unsigned int first_bad =
+        dispatch([&](auto nm) { return first_inadmissible<decltype(nm)::value>(u.begin()); });
+      for (unsigned int c = first_bad; c < n_cells; ++c)
         for (unsigned int q = 0; q < n_q; ++q)
           {
             const auto U = state_at(u, c, q);
@@ -248,6 +246,68 @@ namespace granular_dg::dg
 
   private:
     static constexpr unsigned int max_modes = 5;
+
+    /// f(std::integral_constant<unsigned int, n_modes>()): the mode loops of
+    /// the per-point kernels unrolled for the degree at hand
+    template <typename F>
+    auto
+    dispatch(const F &f) const
+    {
+      switch (n_modes)
+        {
+          case 1:
+            return f(std::integral_constant<unsigned int, 1>());
+          case 2:
+            return f(std::integral_constant<unsigned int, 2>());
+          case 3:
+            return f(std::integral_constant<unsigned int, 3>());
+          case 4:
+            return f(std::integral_constant<unsigned int, 4>());
+          default:
+            return f(std::integral_constant<unsigned int, 5>());
+        }
+    }
+
+    /// state_at() with nm modes (the same sums in the same order)
+    template <unsigned int nm>
+    State<double>
+    state_at(const double *x, const double *B) const
+    {
+      State<double> U;
+      for (unsigned int i = 0; i < n_components; ++i)
+        for (unsigned int k = 0; k < nm; ++k)
+          U[i] += x[i * comp_stride + k * mode_stride] * B[k];
+      return U;
+    }
+
+    template <unsigned int nm>
+    double
+    max_speed_impl(const double *src, const double min_speed) const
+    {
+      double result = 0;
+      for (unsigned int c = 0; c < n_cells; ++c)
+        for (unsigned int q = 0; q < n_q; ++q)
+          result = std::max(result, std::max(phys.max_wave_speed(
+                                               state_at<nm>(src + c * dofs_per_cell,
+                                                            &basis[q * max_modes]),
+                                               coefficients[c]),
+                                             min_speed) /
+                                      h[c]);
+      return result;
+    }
+
+    /// the first cell with an inadmissible point value (n_cells: none)
+    template <unsigned int nm>
+    unsigned int
+    first_inadmissible(const double *src) const
+    {
+      for (unsigned int c = 0; c < n_cells; ++c)
+        for (unsigned int q = 0; q < n_q; ++q)
+          if (!admissible(phys, state_at<nm>(src + c * dofs_per_cell, &basis[q * max_modes]),
+                          coefficients[c]))
+            return c;
+      return n_cells;
+    }
 
     std::size_t
     index(const unsigned int c, const unsigned int i, const unsigned int k) const

@@ -127,6 +127,10 @@ namespace granular_dg::network
     void
     apply(double t, const NetworkState &src, NetworkState &dst) const;
 
+    /// Charge the phases of the following steps to this (benchmark mode;
+    /// nullptr: no timing).
+    void set_phases(StepPhases *p) { phases = p; }
+
     double time() const { return t; }
     unsigned long n_steps() const { return steps; }
     double last_time_step() const { return dt_last; }
@@ -187,6 +191,7 @@ namespace granular_dg::network
     unsigned long              steps = 0;
     /// far-end inflow rate of each apply() call in the current step
     mutable std::vector<double> stage_inflow;
+    StepPhases                 *phases = nullptr;
   };
 
   /// A single run with output (solution.pvd with the network drawn in the

@@ -1,0 +1,213 @@
+#!/usr/bin/python3
+"""Operator throughput of granular_dg (its --benchmark mode) for every physics
+at degrees 1-4, and of deal.II's step-67 (Euler, MatrixFree) built from
+Debian's libdeal.ii-doc examples as the comparator. doc/performance.md.
+
+    /usr/bin/python3 contrib/benchmark.py BUILD_DIR OUT_DIR [--quick] [--no-step67]
+        [--degrees 1,2,3,4] [--cases name,...] [--mpi]
+
+OUT_DIR gets throughput.csv and throughput.md (the table of doc/performance.md)
+and one directory per run with its benchmark.json. step-67 is copied into
+BUILD_DIR/step67-<dim>d-p<k>/ (never into the repository), its constants
+patched by sed (dimension, degree, refinements, a fixed number of time steps,
+CPU + wall timers, no VTU output), built in Release and run; its throughput is
+n_dofs * 5 stages * steps / CPU time of "rk time stepping total".
+Rates are million DoF-stage updates per second per core (CPU time; median of
+the repetitions); the load average is recorded with every run. Run it alone:
+it runs one process at a time (two with --mpi).
+"""
+import argparse
+import csv
+import json
+import os
+import re
+import shutil
+import subprocess
+import sys
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+ROOT = os.path.dirname(HERE)
+STEP67 = "/usr/share/doc/libdeal.ii-doc/examples/step-67/step-67.cc"
+QUIET = ["--set", "Output/output times=", "--set", "Output/write vtu=false",
+         "--set", "Output/progress interval=0", "--set", "Output/overwrite=true"]
+
+# name: (prm, dim, extra --set overrides). Meshes as shipped, except the
+# network (degree 0 ships; the limiter is on for p >= 1 as in its study).
+CASES = {
+    "layered_1d": ("prm/layered_1d.prm", 1, []),
+    "layered_2d": ("prm/layered_2d.prm", 2, []),
+    "column": ("prm/column_m1.5.prm", 1, []),
+    "hopper": ("prm/hopper_cone_30_24_p2.prm", 1, ["Hopper/cells=800"]),
+    "network": ("prm/network_example_7_3.prm", 1, ["Limiter/scheme=componentwise"]),
+}
+
+
+def load():
+    with open("/proc/loadavg") as f:
+        return " ".join(f.read().split()[:3])
+
+
+def run_ours(build, out, name, degree, quick, ranks=1, reuse=False):
+    prm, dim, extra = CASES[name]
+    d = os.path.join(out, "%s-p%d%s" % (name, degree, "-np%d" % ranks if ranks > 1 else ""))
+    if reuse and os.path.exists(os.path.join(d, "benchmark.json")):
+        return read_ours(d, name, dim, degree, ranks)
+    cmd = [os.path.join(build, "granular_dg"), "--benchmark", os.path.join(ROOT, prm),
+           "--set", "Output/directory=" + d, "--set", "Discretization/degree=%d" % degree,
+           "--set", "Benchmark/minimum time=%g" % (0.05 if quick else 0.3),
+           "--set", "Benchmark/repetitions=%d" % (3 if quick else 5)] + QUIET
+    for s in extra:
+        cmd += ["--set", s]
+    if ranks > 1:
+        cmd = ["mpirun", "-np", str(ranks)] + cmd
+    env = dict(os.environ, OMPI_ALLOW_RUN_AS_ROOT="1", OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1")
+    p = subprocess.run(cmd, capture_output=True, text=True, env=env)
+    if p.returncode != 0:
+        print("FAILED %s p%d: %s" % (name, degree, (p.stderr or p.stdout).strip()[-300:]))
+        return None
+    return read_ours(d, name, dim, degree, ranks)
+
+
+def read_ours(d, name, dim, degree, ranks):
+    with open(os.path.join(d, "benchmark.json")) as f:
+        b = json.load(f)
+    return {"code": "granular_dg", "case": name, "dim": dim, "degree": degree, "ranks": ranks,
+            "engine": b["case"]["engine"], "n_dofs": int(b["n_dofs"]),
+            "steps": b["steps_per_repetition"] * b["repetitions"],
+            "cpu_us_per_step": 1e6 * b["cpu_s_per_step_median"],
+            "mdofs_step": b["step_dof_updates_per_s_per_core_median"] / 1e6,
+            "mdofs_rk": b["rk_dof_updates_per_s_per_core_median"] / 1e6,
+            "mdofs_wall": b["step_dof_updates_per_s_wall_median"] / 1e6,
+            "load_before": b["load_before"], "load_after": b["load_after"]}
+
+
+def patch_step67(src, dim, degree, refinements, steps):
+    s = src
+    subs = [(r"constexpr unsigned int dimension\s*= \d+;", "constexpr unsigned int dimension = %d;" % dim),
+            (r"constexpr unsigned int n_global_refinements = \d+;",
+             "constexpr unsigned int n_global_refinements = %d;" % refinements),
+            (r"constexpr unsigned int fe_degree\s*= \d+;", "constexpr unsigned int fe_degree = %d;" % degree),
+            (r"while \(time < final_time - 1e-12\)", "while (timestep_number < %d)" % steps),
+            (r"TimerOutput::never, TimerOutput::wall_times", "TimerOutput::never, TimerOutput::cpu_and_wall_times"),
+            (r"\n    output_results\(0\);", "\n"),
+            (r"timer\.print_wall_time_statistics\(MPI_COMM_WORLD\);",
+             'pcout << "BENCHMARK n_dofs " << dof_handler.n_dofs() << " steps " << timestep_number'
+             ' << " stages " << integrator.n_stages() << " cpu " << timer.get_summary_data('
+             'TimerOutput::total_cpu_time)["rk time stepping total"] << " wall " << '
+             'timer.get_summary_data(TimerOutput::total_wall_time)["rk time stepping total"] << std::endl;')]
+    if dim == 1:  # p4est has no 1D: a serial Triangulation<1>
+        subs.append((r"#ifdef DEAL_II_WITH_P4EST", "#if 0"))
+    for a, b in subs:
+        s, n = re.subn(a, b, s)
+        if n == 0:
+            raise RuntimeError("step-67 patch did not apply: " + a)
+    # the output in the loop: never (output_tick is huge)
+    s = re.sub(r"constexpr double output_tick = [^;]*;", "constexpr double output_tick = 1e30;", s)
+    return s
+
+
+def run_step67(build, dim, degree, refinements, steps, reuse=False):
+    d = os.path.join(os.path.abspath(build), "step67-%dd-p%d" % (dim, degree))
+    exe = os.path.join(d, "step-67")
+    if reuse and os.path.exists(os.path.join(d, "result.json")):
+        with open(os.path.join(d, "result.json")) as f:
+            return json.load(f)
+    if not os.path.exists(exe):
+        os.makedirs(d, exist_ok=True)
+        with open(STEP67) as f:
+            src = f.read()
+        with open(os.path.join(d, "step-67.cc"), "w") as f:
+            f.write(patch_step67(src, dim, degree, refinements, steps))
+        shutil.copy(os.path.join(os.path.dirname(STEP67), "CMakeLists.txt"), d)
+        subprocess.run(["cmake", "-S", d, "-B", d, "-DCMAKE_BUILD_TYPE=Release"], check=True,
+                       stdout=subprocess.DEVNULL)
+        subprocess.run(["make", "-C", d, "-j1", "step-67"], check=True, stdout=subprocess.DEVNULL)
+    before = load()
+    env = dict(os.environ, OMPI_ALLOW_RUN_AS_ROOT="1", OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1")
+    best = None
+    for _ in range(3):  # repeated: the best CPU time
+        p = subprocess.run([exe], cwd=d, capture_output=True, text=True, check=True, env=env)
+        m = re.search(r"BENCHMARK n_dofs (\d+) steps (\d+) stages (\d+) cpu ([\d.eE+-]+) wall ([\d.eE+-]+)",
+                      p.stdout)
+        n_dofs, n_steps, stages, cpu, wall = (int(m[1]), int(m[2]), int(m[3]), float(m[4]), float(m[5]))
+        if best is None or cpu < best[3]:
+            best = (n_dofs, n_steps, stages, cpu, wall)
+    n_dofs, n_steps, stages, cpu, wall = best
+    rate = n_dofs * stages * n_steps / cpu / 1e6
+    r = {"code": "step-67", "case": "euler_vortex_%dd" % dim, "dim": dim, "degree": degree, "ranks": 1,
+            "engine": "matrix_free", "n_dofs": n_dofs, "steps": n_steps,
+            "cpu_us_per_step": 1e6 * cpu / n_steps, "mdofs_step": rate, "mdofs_rk": rate,
+            "mdofs_wall": n_dofs * stages * n_steps / wall / 1e6,
+            "load_before": before, "load_after": load()}
+    with open(os.path.join(d, "result.json"), "w") as f:
+        json.dump(r, f)
+    return r
+
+
+FIELDS = ["code", "case", "dim", "degree", "ranks", "engine", "n_dofs", "steps", "cpu_us_per_step",
+          "mdofs_step", "mdofs_rk", "mdofs_wall", "ratio_to_step67", "load_before", "load_after"]
+
+
+def write_tables(out, rows):
+    s67 = {(r["dim"], r["degree"]): r["mdofs_rk"] for r in rows if r["code"] == "step-67"}
+    for r in rows:
+        ref = s67.get((r["dim"], r["degree"]))
+        r["ratio_to_step67"] = r["mdofs_rk"] / ref if ref and r["code"] != "step-67" else ""
+    with open(os.path.join(out, "throughput.csv"), "w") as f:
+        w = csv.DictWriter(f, fieldnames=FIELDS)
+        w.writeheader()
+        for r in rows:
+            w.writerow({k: ("%.4g" % v if isinstance(v, float) else v) for k, v in r.items()})
+    with open(os.path.join(out, "throughput.md"), "w") as f:
+        f.write("| code | case | dim | p | ranks | engine | DoFs | CPU us/step | MDoF/s/core step "
+                "| MDoF/s/core RK | MDoF/s wall | / step-67 | load before -> after |\n")
+        f.write("|" + "---|" * 13 + "\n")
+        for r in rows:
+            ratio = r["ratio_to_step67"]
+            f.write("| %s | %s | %d | %d | %d | %s | %d | %.1f | %.1f | %.1f | %.1f | %s | %s -> %s |\n" % (
+                r["code"], r["case"], r["dim"], r["degree"], r["ranks"], r["engine"], r["n_dofs"],
+                r["cpu_us_per_step"], r["mdofs_step"], r["mdofs_rk"], r["mdofs_wall"],
+                "%.2f" % ratio if ratio != "" else "", r["load_before"], r["load_after"]))
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("build")
+    ap.add_argument("out")
+    ap.add_argument("--quick", action="store_true", help="short repetitions (a smoke run)")
+    ap.add_argument("--no-step67", action="store_true")
+    ap.add_argument("--degrees", default="1,2,3,4")
+    ap.add_argument("--step67-degrees", default="1,2,3,4")
+    ap.add_argument("--cases", default=",".join(CASES))
+    ap.add_argument("--mpi", action="store_true", help="also layered_2d on 2 ranks (p = 2, 3)")
+    ap.add_argument("--reuse", action="store_true", help="take runs with a result already there")
+    a = ap.parse_args()
+    os.makedirs(a.out, exist_ok=True)
+    degrees = [int(x) for x in a.degrees.split(",")]
+    rows = []
+    for name in [c for c in a.cases.split(",") if c]:
+        for p in degrees:
+            r = run_ours(a.build, a.out, name, p, a.quick, reuse=a.reuse)
+            if r:
+                rows.append(r)
+                print(r, flush=True)
+                write_tables(a.out, rows)
+    if a.mpi:
+        for p in (2, 3):
+            r = run_ours(a.build, a.out, "layered_2d", p, a.quick, ranks=2, reuse=a.reuse)
+            if r:
+                rows.append(r)
+                print(r, flush=True)
+    if not a.no_step67:
+        # 2D: [0,10] x [-5,5], 4 x 2^refinements cells per direction: 128^2
+        # cells, as many DoFs as the 2D strip (0.3-1.2 M)
+        for p in [int(x) for x in a.step67_degrees.split(",")]:
+            r = run_step67(a.build, 2, p, 5, 20 if a.quick else 60, reuse=a.reuse)
+            rows.append(r)
+            print(r, flush=True)
+            write_tables(a.out, rows)
+    write_tables(a.out, rows)
+
+
+if __name__ == "__main__":
+    sys.exit(main())

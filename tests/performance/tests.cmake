@@ -1,0 +1,19 @@
+# performance smoke tests (label performance): granular_dg --benchmark on tiny
+# cases (3 steps x 2 repetitions); check_benchmark.py checks benchmark.json is
+# complete and consistent (rates = n_dofs * stages / CPU per step, phases,
+# load recorded, no snapshots) and prints only what does not vary between
+# runs, compared exactly (numdiff default). No timing assertions: the
+# throughput table is contrib/benchmark.py's (doc/performance.md).
+set(perf_check ${CMAKE_CURRENT_SOURCE_DIR}/performance/check_benchmark.py)
+set(perf_steps --set Benchmark/steps=3 --set Benchmark/repetitions=2 --set "Benchmark/warm-up steps=1"
+  --exe=$<TARGET_FILE:granular_dg>)
+# 1D line engine, with the limiter
+granular_dg_test(performance/benchmark_layered_1d PRM ../prm/layered_1d.prm EXE ${perf_check}
+  ARGS --set "Mesh/x max=20" --set "Mesh/cells x=40" ${perf_steps} COMPARE stdout LABELS performance)
+# 2D MatrixFree engine
+granular_dg_test(performance/benchmark_layered_2d PRM ../prm/layered_2d.prm EXE ${perf_check}
+  ARGS --set "Mesh/cells x=20" --set "Mesh/cells y=4" --set "Mesh/x max=20" ${perf_steps}
+  COMPARE stdout LABELS performance)
+# the network's own time loop (coupling phase)
+granular_dg_test(performance/benchmark_network PRM ../prm/network_example_7_3.prm EXE ${perf_check}
+  ARGS --set "Network/cells per unit length=16" ${perf_steps} COMPARE stdout LABELS performance)
