@@ -115,6 +115,9 @@ namespace
          "  granular_dg CASE.prm [--set Section/name=value ...]   run a case\n"
          "  granular_dg --benchmark CASE.prm [--set ...]           time the steps of a case\n"
          "                                                         (benchmark.json; doc/performance.md)\n"
+         "  granular_dg --resume CASE.prm [--set ...]              continue the run in the case's\n"
+         "                                                         output directory from its newest\n"
+         "                                                         checkpoint (Checkpoint/ parameters)\n"
          "  granular_dg --print-parameters SCENE                   all parameters of a scene,\n"
          "                                                         with defaults and documentation\n"
          "  granular_dg --version | --help\n\n"
@@ -124,8 +127,11 @@ namespace
     std::cout
       << "\nA run writes to Output/directory: solution.pvd + solution-NNNN.vtu (ParaView),\n"
          "profile-NNNN.csv (1D), timeseries.csv, summary.json and parameters.prm.\n"
-         "Exit codes: 0 completed, 1 bad input, 2 run failed (inadmissible state;\n"
-         "the last good state is written), 3 internal error.\n"
+         "Checkpoints: Output/directory/checkpoints/ every Checkpoint/every seconds\n"
+         "(600) or every steps, and on SIGINT/SIGTERM; continue with --resume.\n"
+         "Exit codes: 0 completed (or stopped at Time stepping/max steps), 2 bad input,\n"
+         "3 run failed (inadmissible state; the last good state is written), 4 internal\n"
+         "error, 130/143 interrupted by SIGINT/SIGTERM (a checkpoint is written).\n"
          "Examples are in prm/; documentation in doc/.\n";
   }
 } // namespace
@@ -176,6 +182,8 @@ main(int argc, char **argv)
             }
           else if (a == "--benchmark")
             overrides.push_back("Benchmark/enabled=true");
+          else if (a == "--resume")
+            overrides.push_back("Checkpoint/resume=true");
           else if (a.rfind("--set=", 0) == 0)
             overrides.push_back(a.substr(6));
           else if (a.rfind("-", 0) == 0)
@@ -190,7 +198,7 @@ main(int argc, char **argv)
         {
           if (root)
             print_help();
-          return 1;
+          return 2;
         }
 
       const Scene     &scene = find_scene(find_scene_name(filename, overrides), "scene");
@@ -206,18 +214,24 @@ main(int argc, char **argv)
     {
       if (root)
         std::cerr << "granular_dg: error: " << e.what() << std::endl;
-      return 1;
+      return 2;
     }
   catch (const RunError &e)
     {
       if (root)
         std::cerr << "granular_dg: run failed: " << e.what() << std::endl;
-      return 2;
+      return 3;
+    }
+  catch (const Interrupted &e)
+    {
+      if (root)
+        std::cerr << "granular_dg: " << e.what() << std::endl;
+      return 128 + e.signal;
     }
   catch (const std::exception &e)
     {
       std::cerr << "granular_dg: internal error: " << one_line_message(e) << std::endl;
-      return 3;
+      return 4;
     }
   return 0;
 }

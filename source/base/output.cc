@@ -1,3 +1,4 @@
+#include <granular_dg/base/checkpoint.h>
 #include <granular_dg/base/errors.h>
 #include <granular_dg/base/output.h>
 
@@ -133,6 +134,32 @@ namespace granular_dg
     out.flush();
   }
 
+  std::uint64_t
+  CsvWriter::size()
+  {
+    out.flush();
+    return out.is_open() ? static_cast<std::uint64_t>(out.tellp()) : 0;
+  }
+
+  void
+  truncate_file(const std::string &filename, const std::uint64_t size)
+  {
+    std::error_code ec;
+    const auto      now = fs::file_size(filename, ec);
+    if (ec || now < size)
+      throw RunError("cannot resume: " + filename + " has " +
+                     (ec ? std::string("gone missing") : std::to_string(now) + " bytes") +
+                     ", the checkpoint expects at least " + std::to_string(size));
+    fs::resize_file(filename, size);
+  }
+
+  void
+  CsvWriter::reopen(const std::string &filename, const std::uint64_t size)
+  {
+    truncate_file(filename, size);
+    out.open(filename, std::ios::app);
+  }
+
   void
   prepare_output_directory(const std::string &directory, const bool overwrite)
   {
@@ -155,7 +182,11 @@ namespace granular_dg
                   parameter,
                   directory,
                   std::string("a directory without a previous run's results (it holds ") +
-                    m + "); choose another one or set Output/overwrite = true");
+                    m + "); choose another one or set Output/overwrite = true" +
+                    (has_checkpoints(directory, true) ?
+                       ", or continue that run with --resume" :
+                       ""));
+          fs::remove_all(checkpoint_directory(directory));
           // remove what this program writes, so that nothing stale stays
           for (const auto &entry : fs::directory_iterator(directory))
             {

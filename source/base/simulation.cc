@@ -3,7 +3,10 @@
 #include <granular_dg/base/parameters.h>
 #include <granular_dg/base/simulation.h>
 
+#include <filesystem>
 #include <fstream>
+#include <regex>
+#include <sstream>
 
 namespace granular_dg
 {
@@ -109,6 +112,11 @@ namespace granular_dg
     prm.declare_entry("CFL number", "0.2", Patterns::Double(),
                       "Courant number dt * sum_d(lambda_max / h_d). SSP-RK3 with DG "
                       "of degree p is stable up to about 1/(2p+1). Allowed: (0, 1].");
+    prm.declare_entry("max steps", "0", Patterns::Integer(0),
+                      "Stop when the step counter reaches this number, writing a "
+                      "checkpoint and summary.json (status 'stopped at max steps'); "
+                      "continue with --resume. For runs split into jobs, and restart "
+                      "tests. 0: no limit.");
     prm.declare_entry("check stability limit", "true", Patterns::Bool(),
                       "Refuse a CFL number above SSP-RK3's linear stability limit for the "
                       "degree (1.256, 0.4095, 0.2097, 0.13, 0.0896 for p = 0-4). false: "
@@ -154,6 +162,21 @@ namespace granular_dg
                       "Seconds of wall time between progress lines (0: none).");
     prm.leave_subsection();
 
+    prm.enter_subsection("Checkpoint");
+    prm.declare_entry("every steps", "0", Patterns::Integer(0),
+                      "Write a checkpoint (Output/directory/checkpoints/step-N.ckpt, the "
+                      "newest two are kept) every this many steps (0: not by steps).");
+    prm.declare_entry("every seconds", "600", Patterns::Double(0),
+                      "Write a checkpoint every this many seconds of wall time (0: not by "
+                      "time). A SIGINT or SIGTERM always writes one before the run stops.");
+    prm.declare_entry("resume", "false", Patterns::Bool(),
+                      "Continue the run in Output/directory from its newest valid "
+                      "checkpoint (also granular_dg --resume CASE.prm), appending to its "
+                      "solution.pvd and timeseries.csv. The parameters must be those of "
+                      "that run, except Time stepping/final time and max steps, "
+                      "Checkpoint/* and Output/progress interval.");
+    prm.leave_subsection();
+
     prm.enter_subsection("Convergence");
     prm.declare_entry("enabled", "false", Patterns::Bool(),
                       "Run a convergence study against the exact solution instead "
@@ -195,10 +218,12 @@ namespace granular_dg
     prm.enter_subsection("Time stepping");
     final_time = prm.get_double("final time");
     cfl        = prm.get_double("CFL number");
+    max_steps  = prm.get_integer("max steps");
     const bool check_stability_limit = prm.get_bool("check stability limit");
     prm.leave_subsection();
     require(final_time > 0, "Time stepping/final time", final_time, "must be > 0");
-    require(cfl > 0 && cfl <= 1, "Time stepping/CFL number", cfl,
+    // (a stability study, check stability limit = false, may go beyond 1)
+    require(cfl > 0 && (cfl <= 1 || !check_stability_limit), "Time stepping/CFL number", cfl,
             "must be in (0, 1] (SSP-RK3 DG of degree p is stable up to about 1/(2p+1))");
 
     prm.enter_subsection("Limiter");
@@ -250,19 +275,101 @@ namespace granular_dg
     prm.leave_subsection();
     require(!(benchmark.enabled && convergence), "Benchmark/enabled", "true",
             "false when Convergence/enabled is true");
+
+    prm.enter_subsection("Checkpoint");
+    checkpoint_steps   = prm.get_integer("every steps");
+    checkpoint_seconds = prm.get_double("every seconds");
+    resume             = prm.get_bool("resume");
+    prm.leave_subsection();
+    require(!(resume && overwrite), "Checkpoint/resume", "true",
+            "false when Output/overwrite is true (resume continues the run in the "
+            "directory, overwrite discards it)");
+    require(!(resume && convergence), "Checkpoint/resume", "true",
+            "false when Convergence/enabled is true (a study has no checkpoints)");
+    require(!(resume && benchmark.enabled), "Checkpoint/resume", "true",
+            "false in benchmark mode");
+
+    std::ostringstream text;
+    prm.print_parameters(text, ParameterHandler::ShortPRM);
+    parameters_text = text.str();
+    parameters      = flatten_parameters(parameters_text);
   }
 
   void
-  begin_output(const ParameterHandler &prm, const CommonParameters &params)
+  begin_output(const CommonParameters &params)
   {
+    std::string error;
     if (Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) == 0)
       {
-        prepare_output_directory(params.directory, params.overwrite);
-        std::ofstream out(params.directory + "/parameters.prm");
-        prm.print_parameters(out, ParameterHandler::ShortPRM);
+        try
+          {
+            if (params.resume)
+              check_resumable(params);
+            else
+              prepare_output_directory(params.directory, params.overwrite);
+          }
+        catch (const InputError &e)
+          {
+            error = e.what();
+          }
+        if (error.empty())
+          {
+            std::ofstream out(params.directory + "/parameters.prm");
+            out << params.parameters_text;
+          }
       }
     // the other ranks write into the directory only after it exists
-    MPI_Barrier(MPI_COMM_WORLD);
+    error = Utilities::MPI::broadcast(MPI_COMM_WORLD, error, 0);
+    if (!error.empty())
+      throw InputError(error);
+  }
+
+  void
+  require_beyond_checkpoint(const CommonParameters &params, const Checkpoint &checkpoint,
+                            const std::string &time_name)
+  {
+    require(checkpoint.time < params.final_time * (1 - 1e-14), "Time stepping/final time",
+            params.final_time,
+            "after the time of the checkpoint, " + time_name + " = " +
+              format_number(checkpoint.time) + " (" + checkpoint.file +
+              "): raise it to continue the run");
+    require(params.max_steps == 0 || checkpoint.step < params.max_steps,
+            "Time stepping/max steps", params.max_steps,
+            "0 or above the step of the checkpoint, " + std::to_string(checkpoint.step) + " (" +
+              checkpoint.file + ")");
+  }
+
+  void
+  check_resumable(const CommonParameters &params)
+  {
+    const std::string &dir = params.directory;
+    require(std::filesystem::is_directory(dir), "Checkpoint/resume", "true",
+            "Output/directory = '" + dir + "' does not exist: there is no run to resume");
+    std::ifstream in(dir + "/parameters.prm");
+    require(static_cast<bool>(in), "Checkpoint/resume", "true",
+            "Output/directory = '" + dir + "' holds no run (no parameters.prm)");
+    require(has_checkpoints(dir, true), "Checkpoint/resume", "true",
+            "the run in '" + dir + "' wrote no checkpoint (" +
+              checkpoint_directory(dir) + " is empty or missing), it cannot be resumed");
+    std::ostringstream before;
+    before << in.rdbuf();
+    require_same_parameters(flatten_parameters(before.str()), params.parameters,
+                            "the run in '" + dir + "'");
+
+    // a completed run has nothing to continue, unless the final time grows
+    std::ifstream summary(dir + "/summary.json");
+    std::ostringstream text;
+    text << summary.rdbuf();
+    const std::regex status(R"re("status": "completed")re"),
+      final_time(R"re("final_time": ([-+0-9.eE]+))re");
+    std::smatch match;
+    const std::string json = text.str();
+    if (std::regex_search(json, status) && std::regex_search(json, match, final_time) &&
+        std::stod(match[1]) >= params.final_time * (1 - 1e-12))
+      require(false, "Checkpoint/resume", "true",
+              "the run in '" + dir + "' completed (final time " +
+                std::string(match[1]) +
+                "); nothing to resume (raise Time stepping/final time to continue it)");
   }
 
   void
@@ -286,6 +393,8 @@ namespace granular_dg
     s.add("dof_updates_per_cpu_s_per_rank", r.dof_updates_per_cpu_s_per_rank);
     s.add("n_mpi_ranks", static_cast<long long>(Utilities::MPI::n_mpi_processes(MPI_COMM_WORLD)));
     s.add("status", r.status);
+    if (r.resumed_from_step > 0)
+      s.add("resumed_from_step", static_cast<long long>(r.resumed_from_step));
     if (!r.errors.empty())
       {
         JsonObject e;

@@ -330,6 +330,57 @@ namespace granular_dg::network
     stage_inflow.push_back(far_end_inflow(time, src));
   }
 
+  std::pair<double, double>
+  NetworkProblem::range_of_step(const double dt) const
+  {
+    double lo = u.vertex, hi = u.vertex;
+    for (const auto &e : u.edges)
+      for (const double v : e)
+        {
+          lo = std::min(lo, v);
+          hi = std::max(hi, v);
+        }
+    for (unsigned int k = 0; k < net.edges.size(); ++k)
+      if (net.edges[k].direction != Direction::loop &&
+          net.edges[k].far_end == FarEnd::dirichlet)
+        for (const double time : {t, t + 0.5 * dt, t + dt})
+          {
+            data[k].far_end->set_time(time);
+            const double g =
+              data[k].far_end->value(Point<1>(net.edges[k].direction == Direction::in ?
+                                                0. :
+                                                net.edges[k].length));
+            lo = std::min(lo, g);
+            hi = std::max(hi, g);
+          }
+    return {lo, hi};
+  }
+
+  void
+  NetworkProblem::check_maximum_principle(const NetworkState &s, const double stage_time)
+  {
+    // the vertex is a neighbour of the edge ends: its (stage) value is a
+    // value the edges may take on
+    bounds.first  = std::min(bounds.first, s.vertex);
+    bounds.second = std::max(bounds.second, s.vertex);
+    const auto [lo, hi] = bounds;
+    const double tol    = 1e-12 * (hi - lo + std::max(std::abs(lo), std::abs(hi)));
+    for (unsigned int k = 0; k < edge.size(); ++k)
+      for (const unsigned int c : edge[k]->order)
+        {
+          const double v = s.edges[k](edge[k]->layout().index(c, 0, 0));
+          if (v < lo - tol || v > hi + tol)
+            throw StateFailure{stage_time, int(k),
+                               edge[k]->left(c) + 0.5 * edge[k]->layout().extent(c, 0), v,
+                               "maximum principle violated: u outside [" + format_number(lo) +
+                                 ", " + format_number(hi) +
+                                 "], the range of the cell averages, vertex value and "
+                                 "far-end data at the start of the step (degree 0 is monotone "
+                                 "only up to its CFL limit; CFL number " +
+                                 format_number(disc.cfl) + ")"};
+        }
+  }
+
   void
   NetworkProblem::post_stage(NetworkState &s, const double stage_time)
   {
@@ -346,6 +397,16 @@ namespace granular_dg::network
 
     if (!std::isfinite(s.vertex))
       throw StateFailure{stage_time, -1, 0., s.vertex, "vertex value is not finite"};
+    // (non-finite values fail this test too, and are reported as such below)
+    if (disc.degree == 0 && std::isfinite(bounds.first) && std::isfinite(bounds.second))
+      {
+        bool finite = true;
+        for (const auto &e : s.edges)
+          for (const double v : e)
+            finite = finite && std::isfinite(v);
+        if (finite)
+          check_maximum_principle(s, stage_time);
+      }
     for (unsigned int k = 0; k < edge.size(); ++k)
       for (const double v : s.edges[k])
         if (!std::isfinite(v))
@@ -381,6 +442,8 @@ namespace granular_dg::network
     const double before = phases ? phases->total() : 0.;
     const auto   start  = std::chrono::steady_clock::now();
     stage_inflow.clear();
+    if (disc.degree == 0)
+      bounds = range_of_step(dt);
     if (n_stages() == 1)
       {
         apply(t, u, rhs);

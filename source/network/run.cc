@@ -78,6 +78,15 @@ namespace granular_dg::network
         return name;
       }
 
+      /// The snapshot count and (time, file) records, for a checkpoint.
+      template <typename Archive>
+      void
+      checkpoint_io(Archive &ar)
+      {
+        ar.io(n_written);
+        ar.io(records);
+      }
+
     private:
       void
       write_vtu_file(const std::string &filename, const NetworkProblem &p,
@@ -179,9 +188,10 @@ namespace granular_dg::network
     };
 
     /// Steps from the current time to t_end, the last step landing on it;
-    /// after_step runs after every step (not timed).
+    /// after_step runs after every step (not timed) and may stop the loop
+    /// early by returning true.
     LoopTime
-    advance_to(NetworkProblem &p, const double t_end, const std::function<void()> &after_step,
+    advance_to(NetworkProblem &p, const double t_end, const std::function<bool()> &after_step,
                NetworkState *last_good = nullptr)
     {
       Timer    timer;
@@ -202,7 +212,8 @@ namespace granular_dg::network
           timer.stop();
           stepping.cpu += timer.cpu_time();
           stepping.wall += timer.wall_time();
-          after_step();
+          if (after_step())
+            break;
         }
       return stepping;
     }
@@ -227,6 +238,13 @@ namespace granular_dg::network
     struct MassBalance
     {
       double mass0 = 0, scale = 1, last = 0, max_residual = 0, max_step = 0;
+      template <typename Archive>
+      void
+      checkpoint_io(Archive &ar)
+      {
+        for (double *x : {&mass0, &scale, &last, &max_residual, &max_step})
+          ar.io(*x);
+      }
       void
       start(const NetworkProblem &p)
       {
@@ -290,7 +308,6 @@ namespace granular_dg::network
     result.n_cells = p.n_cells();
     result.h_min   = p.min_cell_size();
 
-    const auto    output_times = internal::output_schedule(params);
     NetworkOutput snapshots(params.directory, params.profile_points > 0 ? params.profile_points :
                                                 std::max(2u, discretisation.degree + 1),
                             params.write_vtu);
@@ -303,9 +320,10 @@ namespace granular_dg::network
         if (exact)
           for (const char *n : {"vertex_exact", "l1_error", "l1_error_vertex"})
             header.emplace_back(n);
-        timeseries.open(params.directory + "/timeseries.csv", header,
-                        "mass_balance_residual = |mass - mass(0) - boundary_inflow| / "
-                        "||u(0)||_L1; rh_residual = sum_in F - sum_out F at the vertex");
+        if (!params.resume)
+          timeseries.open(params.directory + "/timeseries.csv", header,
+                          "mass_balance_residual = |mass - mass(0) - boundary_inflow| / "
+                          "||u(0)||_L1; rh_residual = sum_in F - sum_out F at the vertex");
         std::cout << "  " << graph.edges.size() << " edges, " << p.junction().ends().size()
                   << " vertex ends, vertex width " << format_number(p.junction().width())
                   << ", " << result.n_cells << " cells, " << result.n_dofs << " DoFs, degree "
@@ -317,8 +335,37 @@ namespace granular_dg::network
 
     MassBalance balance;
     balance.start(p);
-    const double tv0 = p.total_variation(), u00 = p.vertex_value();
-    double       tv_max = tv0, dt = 0;
+    double tv0 = p.total_variation(), u00 = p.vertex_value();
+    double tv_max = tv0, dt = 0;
+
+    // a checkpoint: the problem's state, the loop's diagnostics and the
+    // output records (written and read by the same io() sequence)
+    const CheckpointIdentity identity{scene,          System::name, 1, discretisation.degree,
+                                      result.n_cells, result.n_dofs};
+    auto checkpoint_io = [&](auto &ar, std::uint64_t &timeseries_size) {
+      p.checkpoint_io(ar);
+      balance.checkpoint_io(ar);
+      for (double *x : {&tv0, &u00, &tv_max, &dt})
+        ar.io(*x);
+      snapshots.checkpoint_io(ar);
+      ar.io(timeseries_size);
+    };
+    const bool resume = params.resume && write_files;
+    if (resume)
+      {
+        const Checkpoint c =
+          read_checkpoint(params.directory, identity, params.parameters, MPI_COMM_WORLD);
+        require_beyond_checkpoint(params, c, "t");
+        ByteReader    r(c.payload);
+        std::uint64_t timeseries_size = 0;
+        checkpoint_io(r, timeseries_size);
+        timeseries.reopen(params.directory + "/timeseries.csv", timeseries_size);
+        result.resumed_from_step = p.n_steps();
+        std::cout << "  resuming from " << c.file << ": t = " << format_number(p.time())
+                  << ", step " << p.n_steps() << std::endl;
+      }
+    const unsigned long first_step   = p.n_steps();
+    const auto          output_times = internal::output_schedule(params, p.time());
     auto         record = [&]() {
       if (!write_files)
         return;
@@ -381,11 +428,49 @@ namespace granular_dg::network
         return result;
       }
 
-    record();
+    if (!resume)
+      record();
 
-    Progress     progress(0., params.final_time, write_files ? params.progress_interval : 0.);
+    Progress progress(p.time(), params.final_time, write_files ? params.progress_interval : 0.);
     LoopTime     loop;
     NetworkState last_good;
+    const InterruptHandlers interrupt_handlers;
+    CheckpointSchedule      schedule(params.checkpoint_steps, params.checkpoint_seconds,
+                                write_files ? params.max_steps : 0, write_files,
+                                MPI_COMM_WORLD);
+    // after a step (and the snapshot of a step landing on an output time):
+    // checkpoint and stop when due; true: stop
+    std::string stopped;
+    auto        poll = [&]() {
+      const auto  d = schedule.poll(p.n_steps());
+      std::string file;
+      if (d.write)
+        {
+          ByteWriter    w;
+          std::uint64_t timeseries_size = timeseries.size();
+          checkpoint_io(w, timeseries_size);
+          file = write_checkpoint(params.directory, identity, params.parameters, p.n_steps(),
+                                  p.time(), w.bytes, MPI_COMM_WORLD);
+          schedule.written();
+          if (!d.stop() && params.progress_interval > 0)
+            std::cout << "  checkpoint " << file << " (t = " << format_number(p.time())
+                      << ", step " << p.n_steps() << ")" << std::endl;
+        }
+      if (!d.stop())
+        return false;
+      stopped = stop_status(d, "t", p.time(), p.n_steps(), file);
+      if (d.signal != 0)
+        {
+          result.status      = stopped;
+          result.n_steps     = p.n_steps();
+          result.final_time  = p.time();
+          result.wall_time_s = wall_timer.wall_time();
+          if (write_files)
+            write_summary(params.directory, scene, 1, discretisation.degree, result);
+          throw Interrupted(d.signal, stopped);
+        }
+      return true;
+    };
     try
       {
         for (const double t_out : output_times)
@@ -397,9 +482,15 @@ namespace granular_dg::network
                 tv_max = std::max(tv_max, p.total_variation());
                 dt = p.last_time_step();
                 progress.update(p.n_steps(), p.time(), dt);
+                // a step landing on t_out: first the snapshot (below)
+                return p.time() < t_out * (1 - 1e-14) && poll();
               },
               &last_good);
+            if (!stopped.empty())
+              break;
             record();
+            if (poll())
+              break;
           }
       }
     catch (const StateFailure &f)
@@ -437,8 +528,17 @@ namespace granular_dg::network
 
     result.n_steps           = p.n_steps();
     result.final_time        = p.time();
+    if (!stopped.empty())
+      {
+        // stopped at max steps: a checkpoint to continue from, no results
+        result.status      = stopped;
+        result.wall_time_s = wall_timer.wall_time();
+        write_summary(params.directory, scene, 1, discretisation.degree, result);
+        std::cout << "  " << stopped << std::endl;
+        return result;
+      }
     result.time_loop_s       = loop.wall;
-    const double updates     = double(result.n_dofs) * p.n_stages() * p.n_steps();
+    const double updates     = double(result.n_dofs) * p.n_stages() * (p.n_steps() - first_step);
     result.dof_updates_per_s = loop.wall > 0 ? updates / loop.wall : 0;
     JsonObject &d = result.diagnostics;
     d.add("n_edges", static_cast<long long>(graph.edges.size()));
@@ -529,7 +629,10 @@ namespace granular_dg::network
             MassBalance balance;
             balance.start(p);
             const double cpu =
-              advance_to(p, params.final_time, [&]() { balance.update(p); }).cpu;
+              advance_to(p, params.final_time, [&]() {
+                balance.update(p);
+                return false;
+              }).cpu;
             const auto   e   = p.errors(exact);
             const double eoc = e_prev > 0 ? std::log(e_prev / e.l1) /
                                               std::log(h_prev / p.min_cell_size()) :

@@ -1,6 +1,6 @@
 # admissibility tests (included by tests/CMakeLists.txt): one run per
 # physics driven into its inadmissible set. Each case gives two tests:
-#   NAME          exit code 2; exactly one line on stderr naming time, step,
+#   NAME          exit code 3; exactly one line on stderr naming time, step,
 #                 position, state and the failed test (relative 1e-6: the
 #                 numbers of a failing nonlinear run are round-off sensitive
 #                 in their last digits); the last good state and
@@ -9,9 +9,9 @@
 #                 n_time_steps of the last good state (relative 1e-6).
 function(admissibility_case name)
   cmake_parse_arguments(A "" "PRM" "ARGS;FILES" ${ARGN})
-  granular_dg_test(admissibility/${name} PRM ${A_PRM} ARGS ${A_ARGS} EXIT 2 KEEP_OUTPUT
+  granular_dg_test(admissibility/${name} PRM ${A_PRM} ARGS ${A_ARGS} EXIT 3 KEEP_OUTPUT
     NUMDIFF -r 1e-6 EXPECT_FILES out/summary.json ${A_FILES})
-  granular_dg_test(admissibility/${name}_summary PRM ${A_PRM} ARGS ${A_ARGS} EXIT 2 KEEP_OUTPUT
+  granular_dg_test(admissibility/${name}_summary PRM ${A_PRM} ARGS ${A_ARGS} EXIT 3 KEEP_OUTPUT
     COMPARE summary.json:status,final_time,n_time_steps NUMDIFF -r 1e-6)
 endfunction()
 
@@ -21,7 +21,7 @@ admissibility_case(layered_tension PRM admissibility/layered_tension.prm
 # ... and beta > 0 under strong compression (tests/input/loss_of_hyperbolicity
 # checks its message; here its summary)
 granular_dg_test(admissibility/layered_compression_summary PRM input/loss_of_hyperbolicity.prm
-  EXIT 2 KEEP_OUTPUT COMPARE summary.json:status,final_time,n_time_steps NUMDIFF -r 1e-6)
+  EXIT 3 KEEP_OUTPUT COMPARE summary.json:status,final_time,n_time_steps NUMDIFF -r 1e-6)
 # the column: the stress law overflows (inf/NaN state)
 admissibility_case(column_overflow PRM admissibility/column_overflow.prm
   FILES out/solution-0001.vtu out/profile-0001.csv)
@@ -31,5 +31,17 @@ admissibility_case(network_nan_inflow PRM admissibility/network_nan_inflow.prm
 # the hopper: the 30 -> 35 deg cone transition loses hyperbolicity
 # (tests/hopper/hyperbolicity_loss checks its message; here its summary)
 granular_dg_test(admissibility/hopper_hyperbolicity_loss_summary PRM ../prm/hopper_cone_30_35.prm
-  ARGS --set Output/directory=out EXIT 2 KEEP_OUTPUT
+  ARGS --set Output/directory=out EXIT 3 KEEP_OUTPUT
   COMPARE summary.json:status,final_time,n_time_steps NUMDIFF -r 1e-6)
+# the network at degree 0: the maximum principle, broken by a CFL number
+# above the monotone limit (Example 7.3 at CFL 1.2, the stability check off)
+admissibility_case(network_maximum_principle PRM ../prm/network_example_7_3.prm
+  ARGS --set "Time stepping/CFL number=1.2" --set "Time stepping/check stability limit=false"
+       --set Output/directory=out
+  FILES out/solution-0001.vtu out/profile-0001-edge-1.csv)
+# layered media with Limiter/strain positivity = true: the model declares
+# eps >= 0; the tensile tail of case (b) (mean strain < 0) stops the run
+admissibility_case(layered_negative_strain PRM ../prm/layered_1d.prm
+  ARGS --set "Limiter/strain positivity=true" --set Output/directory=out
+       --set "Output/write vtu=false"
+  FILES out/profile-0001.csv)

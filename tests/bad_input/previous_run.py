@@ -39,3 +39,13 @@ os.remove('out/summary.json')
 code, err = run()
 print(f'killed run (no summary.json): exit {code}, {len(err)} line(s) on stderr')
 print(err[-1] if err else '')
+# a run that wrote checkpoints: the refusal points to --resume, and
+# overwrite discards the checkpoints too
+os.makedirs('out/checkpoints', exist_ok=True)
+open('out/checkpoints/step-0000000007.ckpt', 'w').close()
+code, err = run()
+print(f'run with checkpoints: exit {code}, {len(err)} line(s) on stderr')
+print(err[-1] if err else '')
+code, err = run('--set', 'Output/overwrite=true')
+print(f'with overwrite = true: exit {code}')
+print(f'  checkpoints removed: {not os.path.exists("out/checkpoints")}')

@@ -1,6 +1,6 @@
 # bad_input tests (included by tests/CMakeLists.txt): the bad-input suite of
 # issue 8. Every NAME.prm here is a malformed case run as
-# `granular_dg NAME.prm`: exit code 1, exactly one line on stderr naming the
+# `granular_dg NAME.prm`: exit code 2, exactly one line on stderr naming the
 # file and line where applicable, the parameter, its value and what is
 # allowed (compared verbatim with NAME.output: numdiff -a 0 -r 0 on the
 # fields, so any change of wording or number fails), and no file written.
@@ -10,26 +10,26 @@ file(GLOB bad_input_cases RELATIVE ${CMAKE_CURRENT_SOURCE_DIR}/bad_input
   CONFIGURE_DEPENDS ${CMAKE_CURRENT_SOURCE_DIR}/bad_input/*.prm)
 foreach(file ${bad_input_cases})
   get_filename_component(t ${file} NAME_WE)
-  granular_dg_test(bad_input/${t} PRM bad_input/${file} EXIT 1 KEEP_OUTPUT NUMDIFF -a 0 -r 0)
+  granular_dg_test(bad_input/${t} PRM bad_input/${file} EXIT 2 KEEP_OUTPUT NUMDIFF -a 0 -r 0)
 endforeach()
 
 # Cases without a file of their own (command line); base: a valid quick case.
 set(base bad_input/../input/base.prm)
-granular_dg_test(bad_input/directory_as_prm ARGS . EXIT 1 KEEP_OUTPUT NUMDIFF -a 0 -r 0)
+granular_dg_test(bad_input/directory_as_prm ARGS . EXIT 2 KEEP_OUTPUT NUMDIFF -a 0 -r 0)
 granular_dg_test(bad_input/set_without_name PRM ${base} ARGS --set =3
-  EXIT 1 KEEP_OUTPUT NUMDIFF -a 0 -r 0)
+  EXIT 2 KEEP_OUTPUT NUMDIFF -a 0 -r 0)
 granular_dg_test(bad_input/set_without_value_sign PRM ${base} ARGS --set "Mesh/cells x"
-  EXIT 1 KEEP_OUTPUT NUMDIFF -a 0 -r 0)
+  EXIT 2 KEEP_OUTPUT NUMDIFF -a 0 -r 0)
 granular_dg_test(bad_input/set_unknown_section PRM ${base} ARGS --set "Meshes/cells x=3"
-  EXIT 1 KEEP_OUTPUT NUMDIFF -a 0 -r 0)
-granular_dg_test(bad_input/unknown_option PRM ${base} ARGS --resume
-  EXIT 1 KEEP_OUTPUT NUMDIFF -a 0 -r 0)
+  EXIT 2 KEEP_OUTPUT NUMDIFF -a 0 -r 0)
+granular_dg_test(bad_input/unknown_option PRM ${base} ARGS --restart
+  EXIT 2 KEEP_OUTPUT NUMDIFF -a 0 -r 0)
 granular_dg_test(bad_input/two_prm_files PRM ${base} ARGS other.prm
-  EXIT 1 KEEP_OUTPUT NUMDIFF -a 0 -r 0)
+  EXIT 2 KEEP_OUTPUT NUMDIFF -a 0 -r 0)
 granular_dg_test(bad_input/print_parameters_unknown_scene ARGS --print-parameters elastic
-  EXIT 1 KEEP_OUTPUT NUMDIFF -a 0 -r 0)
+  EXIT 2 KEEP_OUTPUT NUMDIFF -a 0 -r 0)
 granular_dg_test(bad_input/set_scene_mismatch PRM ${base} ARGS --set scene=column
-  EXIT 1 KEEP_OUTPUT NUMDIFF -a 0 -r 0)
+  EXIT 2 KEEP_OUTPUT NUMDIFF -a 0 -r 0)
 
 # An output directory with a previous run (scenario script, exact text).
 granular_dg_test(bad_input/previous_run EXE ${TEST_PYTHON}

@@ -64,10 +64,10 @@ granular_dg_test(column/m15_profile_t20 PRM column/m15_t20.prm
 
 # Bad input: one line naming the parameter, its value and what is allowed.
 granular_dg_test(column/bad_exponent PRM column/m1_stuck.prm
-  ARGS "--set" "Physics/stress exponent m=0.5" EXIT 1 KEEP_OUTPUT)
+  ARGS "--set" "Physics/stress exponent m=0.5" EXIT 2 KEEP_OUTPUT)
 granular_dg_test(column/bad_wall_strain PRM column/m1_stuck.prm
-  ARGS "--set" "Physics/wall strain=0.5" EXIT 1 KEEP_OUTPUT)
+  ARGS "--set" "Physics/wall strain=0.5" EXIT 2 KEEP_OUTPUT)
 granular_dg_test(column/bad_closed_form PRM column/m1_stuck.prm
-  ARGS "--set" "Physics/stress exponent m=2" "--set" "Diagnostics/closed form=true" EXIT 1 KEEP_OUTPUT)
+  ARGS "--set" "Physics/stress exponent m=2" "--set" "Diagnostics/closed form=true" EXIT 2 KEEP_OUTPUT)
 granular_dg_test(column/bad_friction PRM column/m1_stuck.prm
-  ARGS "--set" "Physics/friction=implicit" EXIT 1 KEEP_OUTPUT)
+  ARGS "--set" "Physics/friction=implicit" EXIT 2 KEEP_OUTPUT)

@@ -57,14 +57,14 @@ endif()
 # corner focuses on the axis): exit code 2, one line with tau, theta, the
 # state and the margin, the last good state written (relative 1e-6).
 granular_dg_test(hopper/hyperbolicity_loss PRM ../prm/hopper_cone_30_35.prm
-  ARGS --set Output/directory=out EXIT 2 KEEP_OUTPUT NUMDIFF -r 1e-6
+  ARGS --set Output/directory=out EXIT 3 KEEP_OUTPUT NUMDIFF -r 1e-6
   EXPECT_FILES out/summary.json out/solution-0002.vtu out/profile-0002.csv
                out/stress-0001.csv out/hopper-field.vtu)
 
 # Transition data on Gamma_0 that are not hyperbolic (30 -> 15 deg cone,
 # below the admissible 18.1 deg): exit code 2 before the march.
 granular_dg_test(hopper/inadmissible_transition PRM hopper/base.prm
-  ARGS --set "Hopper/lower half-angle=15" EXIT 2 KEEP_OUTPUT NUMDIFF -r 1e-6
+  ARGS --set "Hopper/lower half-angle=15" EXIT 3 KEEP_OUTPUT NUMDIFF -r 1e-6
   EXPECT_FILES out/summary.json)
 
 # The Fig. 9 scan (cone): psi stops being monotone at 22.4 deg and the
@@ -76,7 +76,7 @@ granular_dg_test(hopper/scan_cone PRM ../prm/hopper_fig9_scan.prm
   COMPARE summary.json:diagnostics/psi_monotone_up_to_deg,diagnostics/zero_transition_at_deg
   NUMDIFF -a 0.1 -r 0)
 
-# Bad input: exit code 1, one line naming the parameter, value and what is
+# Bad input: exit code 2, one line naming the parameter, value and what is
 # allowed, nothing written (compared verbatim).
 set(hopper_bad_lower_angle "Hopper/lower half-angle=95")
 set(hopper_bad_upper_angle "Hopper/upper half-angle=0")
@@ -87,5 +87,5 @@ set(hopper_no_radial_field "Hopper/lower half-angle=60")
 set(hopper_bad_cfl "Time stepping/CFL number=1.5")
 foreach(t bad_lower_angle bad_upper_angle bad_delta bad_wall_friction bad_geometry
           no_radial_field bad_cfl)
-  granular_dg_test(hopper/${t} PRM hopper/base.prm ARGS --set "${hopper_${t}}" EXIT 1 KEEP_OUTPUT)
+  granular_dg_test(hopper/${t} PRM hopper/base.prm ARGS --set "${hopper_${t}}" EXIT 2 KEEP_OUTPUT)
 endforeach()

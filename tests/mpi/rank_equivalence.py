@@ -17,19 +17,14 @@ below the print resolution are not differences. The raw column-scaled
 difference max |a - b| / s_j and its column go to stderr. The test
 compares the printed numbers with 0 at the tolerance of its tests.cmake.
 """
-import csv
-import math
 import os
 import subprocess
 import sys
 
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), '..', 'common'))
+import csv_compare  # noqa: E402
+
 exe, prm, ranks = sys.argv[1], sys.argv[2], [int(r) for r in sys.argv[3:]]
-
-
-def read(path):
-    with open(path) as f:
-        rows = list(csv.reader(l for l in f if not l.startswith('#')))
-    return rows[0], [[float(x) for x in r] for r in rows[1:]]
 
 
 def run(n):
@@ -49,26 +44,10 @@ if not files:
     sys.exit('rank_equivalence: no CSV output to compare')
 for n in ranks[1:]:
     for name in files:
-        h0, a = read(os.path.join(ref, name))
-        h1, b = read(os.path.join(dirs[n], name))
-        if h0 != h1 or len(a) != len(b):
+        result = csv_compare.difference(os.path.join(ref, name), os.path.join(dirs[n], name))
+        if result is None:
             sys.exit(f'rank_equivalence: {name} differs in shape on {n} ranks')
-        worst, where, raw = 0., '-', 0.
-        for j, col in enumerate(h0):
-            partners = [k for k, c in enumerate(h0) if c.rstrip('xy') == col.rstrip('xy')
-                        and c[-2:] in ('_x', '_y')] or [j]
-            scale = max(abs(r[k]) for r in a for k in partners)
-            if scale == 0:
-                scale = 1.
-            for r, q in zip(a, b):
-                diff = abs(r[j] - q[j])
-                raw = max(raw, diff / scale)
-                # one unit of the 12th significant digit (format %.12g)
-                unit = max(10 ** (math.floor(math.log10(abs(x))) - 11) if x else 0.
-                           for x in (r[j], q[j]))
-                d = max(diff - unit, 0.) / scale
-                if d > worst:
-                    worst, where = d, col
+        worst, raw, where = result
         print(f'np{n} {name} = {worst:.3e}')
         print(f'np{n} {name}: beyond the print resolution {worst:.3e} ({where}); '
               f'column-scaled difference {raw:.3e}', file=sys.stderr)

@@ -18,5 +18,5 @@ set_tests_properties(mpi/layered_2d_rank_equivalence PROPERTIES RUN_SERIAL TRUE)
 # summary.json's status (rank 0 writes it, and prints the same line) names
 # the position and state of that rank's point, not "on another MPI rank"
 # (relative 1e-6; stderr is not compared: mpirun adds its own lines).
-granular_dg_test(mpi/failure_on_other_rank PRM mpi/failure_on_rank_1.prm MPI 2 EXIT 2
+granular_dg_test(mpi/failure_on_other_rank PRM mpi/failure_on_rank_1.prm MPI 2 EXIT 3
   KEEP_OUTPUT COMPARE summary.json:status,final_time NUMDIFF -r 1e-6 LABELS mpi)

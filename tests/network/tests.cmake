@@ -106,23 +106,23 @@ granular_dg_test(network/smooth_eoc_vertex_cell PRM ../prm/network_smooth.prm
        --set "Convergence/CFL numbers=0.3,0.18,0.1" --set "Convergence/cells=32,64,128"
   COMPARE convergence-rates.csv NUMDIFF -a 0.1 -r 0)
 
-# Bad input: exit 1, one line naming the parameter, its value and what is
+# Bad input: exit 2, one line naming the parameter, its value and what is
 # allowed (verbatim), nothing written.
-granular_dg_test(network/bad_direction PRM network/bad_direction.prm EXIT 1 KEEP_OUTPUT)
+granular_dg_test(network/bad_direction PRM network/bad_direction.prm EXIT 2 KEEP_OUTPUT)
 granular_dg_test(network/bad_flux PRM ../prm/network_example_7_4.prm
-  ARGS --set "Network/Edge 3/flux=burger" EXIT 1 KEEP_OUTPUT)
+  ARGS --set "Network/Edge 3/flux=burger" EXIT 2 KEEP_OUTPUT)
 granular_dg_test(network/negative_length PRM ../prm/network_example_7_4.prm
-  ARGS --set "Network/Edge 5/length=-1" EXIT 1 KEEP_OUTPUT)
+  ARGS --set "Network/Edge 5/length=-1" EXIT 2 KEEP_OUTPUT)
 granular_dg_test(network/alpha_swap PRM ../prm/network_example_7_2.prm
-  ARGS --set "Network/Edge 3/alpha=4" --set "Network/Edge 5/alpha=2" EXIT 1 KEEP_OUTPUT)
+  ARGS --set "Network/Edge 3/alpha=4" --set "Network/Edge 5/alpha=2" EXIT 2 KEEP_OUTPUT)
 granular_dg_test(network/wrong_initial_data PRM ../prm/network_example_7_5.prm
-  ARGS --set "Network/Edge 1/initial data=if(x < 0.5, 2, 1)" EXIT 1 KEEP_OUTPUT)
+  ARGS --set "Network/Edge 1/initial data=if(x < 0.5, 2, 1)" EXIT 2 KEEP_OUTPUT)
 granular_dg_test(network/bad_vertex_value PRM ../prm/network_example_7_4.prm
-  ARGS --set "Network/vertex initial value=c0" EXIT 1 KEEP_OUTPUT)
+  ARGS --set "Network/vertex initial value=c0" EXIT 2 KEEP_OUTPUT)
 granular_dg_test(network/bad_initial_expression PRM ../prm/network_example_7_4.prm
-  ARGS --set "Network/Edge 2/initial data=1 + y" EXIT 1 KEEP_OUTPUT)
+  ARGS --set "Network/Edge 2/initial data=1 + y" EXIT 2 KEEP_OUTPUT)
 granular_dg_test(network/no_edges PRM ../prm/network_example_7_4.prm
   ARGS --set "Network/Edge 1/direction=none" --set "Network/Edge 2/direction=none"
        --set "Network/Edge 3/direction=none" --set "Network/Edge 4/direction=none"
        --set "Network/Edge 5/direction=none" --set "Network/exact solution=none"
-  EXIT 1 KEEP_OUTPUT)
+  EXIT 2 KEEP_OUTPUT)

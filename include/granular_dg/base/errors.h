@@ -7,7 +7,7 @@
 namespace granular_dg
 {
   /// Bad input: names the parameter, the value given and what is allowed.
-  /// main() prints what() as one line on stderr and exits with code 1.
+  /// main() prints what() as one line on stderr and exits with code 2.
   class InputError : public std::runtime_error
   {
   public:
@@ -15,7 +15,7 @@ namespace granular_dg
   };
 
   /// A run that cannot go on (inadmissible state, NaN time step): main()
-  /// prints what() and exits with code 2 after the last good state is written.
+  /// prints what() and exits with code 3 after the last good state is written.
   class RunError : public std::runtime_error
   {
   public:

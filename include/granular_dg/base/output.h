@@ -1,6 +1,7 @@
 #pragma once
 
 #include <chrono>
+#include <cstdint>
 #include <fstream>
 #include <string>
 #include <utility>
@@ -42,9 +43,20 @@ namespace granular_dg
     void row(const std::vector<double> &values);
     bool is_open() const { return out.is_open(); }
 
+    /// The bytes written so far (a checkpoint records it).
+    std::uint64_t size();
+    /// Continue a file written up to size bytes by an earlier run (what
+    /// follows, e.g. rows after the checkpoint of a killed run, is cut).
+    void reopen(const std::string &filename, std::uint64_t size);
+
   private:
     std::ofstream out;
   };
+
+  /// Cut filename to size bytes (an appended file continued by a resumed
+  /// run); a RunError if it is shorter.
+  void
+  truncate_file(const std::string &filename, std::uint64_t size);
 
   /// The output directory of a run: created if missing, refused if it holds
   /// a previous run's results unless overwrite is set, checked for writing.

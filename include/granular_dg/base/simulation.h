@@ -7,8 +7,10 @@
 #include <deal.II/grid/tria.h>
 
 #include <granular_dg/base/benchmark.h>
+#include <granular_dg/base/checkpoint.h>
 #include <granular_dg/base/output.h>
 #include <granular_dg/dg/boundary.h>
+#include <granular_dg/dg/dg_operator.h>
 #include <granular_dg/dg/limiter.h>
 #include <granular_dg/dg/modal_layout.h>
 #include <granular_dg/dg/time_integrator.h>
@@ -34,7 +36,17 @@ namespace granular_dg
 
     double        final_time = 1.;
     double        cfl        = 0.2;
+    /// stop (with a checkpoint) when the step counter reaches this (0: never)
     unsigned long max_steps  = 0;
+
+    /// Checkpoint/: every so many steps and wall seconds (0: not), resume
+    unsigned long checkpoint_steps   = 0;
+    double        checkpoint_seconds = 0.;
+    bool          resume             = false;
+    /// the parameters of the run (parameters.prm, and what a checkpoint
+    /// must match when resumed)
+    std::string   parameters_text;
+    ParameterList parameters;
 
     dg::LimiterType limiter = dg::LimiterType::none;
     double          tvb_M   = 0.;
@@ -73,6 +85,20 @@ namespace granular_dg
   public:
     virtual ~SceneHooks() = default;
 
+    /// Set before initialize(): the run continues from a checkpoint, whose
+    /// state load() brings (files the hooks append to must not be started
+    /// anew in initialize()).
+    void
+    set_resuming(const bool r)
+    {
+      resuming_run = r;
+    }
+    bool
+    resuming() const
+    {
+      return resuming_run;
+    }
+
     /// Once the discretisation exists (the layout gives cell-wise access to
     /// the Legendre modes of the solution vector: local indices, to be used
     /// with local_element()).
@@ -93,6 +119,16 @@ namespace granular_dg
     post_limiter(dg::VectorType &, double /*stage_time*/)
     {}
 
+    /// After the operator's own check of every stage (finite, hyperbolic):
+    /// what else the scene's model requires of the state (e.g. strain >= 0
+    /// with the positivity option). A report that is not ok stops the run
+    /// like the operator's.
+    virtual dg::AdmissibilityReport
+    check_admissibility(const dg::VectorType &) const
+    {
+      return {};
+    }
+
     /// After every completed step (cheap per-step diagnostics).
     virtual void
     end_of_step(const dg::VectorType &, double /*t*/, double /*dt*/, unsigned long /*step*/)
@@ -110,6 +146,22 @@ namespace granular_dg
       return {};
     }
 
+    /// The scene's running state for a checkpoint (counters, histories, the
+    /// sizes of the files it appends to), written with w.io(x) per member.
+    /// Called on every MPI rank (it may be collective); rank 0's bytes are
+    /// stored, so the state must not depend on the partition (sum counters
+    /// over the ranks here).
+    virtual void
+    save(ByteWriter & /*w*/)
+    {}
+
+    /// Restore what save() wrote, on every rank (all get rank 0's bytes), at
+    /// the start of a resumed run, after initialize(); reopen appended files
+    /// cut to their checkpointed sizes.
+    virtual void
+    load(ByteReader & /*r*/)
+    {}
+
     /// At the end of a run (also of a failed one, with the last good state):
     /// scene diagnostics for summary.json and, when write_files, extra files
     /// in directory.
@@ -117,6 +169,9 @@ namespace granular_dg
     finish(const dg::VectorType &, double /*t*/, JsonObject & /*diagnostics*/,
            const std::string & /*directory*/, bool /*write_files*/)
     {}
+
+  private:
+    bool resuming_run = false;
   };
 
   /// What a scene hands to the solver: its physics, mesh, boundary and
@@ -161,6 +216,8 @@ namespace granular_dg
     std::vector<std::array<double, 3>> errors;
     double                           l2_error = -1; ///< all components
     double                           l1_error = -1; ///< sum over the components
+    /// the step a resumed run started from (0: not resumed)
+    unsigned long                    resumed_from_step = 0;
     /// the state at the end (the last good one of a failed run)
     std::shared_ptr<dg::VectorType>  final_solution;
     JsonObject                       diagnostics;
@@ -200,9 +257,21 @@ namespace granular_dg
 
   /// Create (or, with Output/overwrite, clear) the output directory and write
   /// parameters.prm, the parameters actually used. Call after all input has
-  /// been validated, so that bad input leaves nothing behind.
+  /// been validated, so that bad input leaves nothing behind. With
+  /// Checkpoint/resume: check_resumable() instead of creating.
   void
-  begin_output(const ParameterHandler &prm, const CommonParameters &params);
+  begin_output(const CommonParameters &params);
+
+  /// An InputError unless Output/directory holds a run that wrote a
+  /// checkpoint and had the same parameters (but those a resume may change).
+  void
+  check_resumable(const CommonParameters &params);
+
+  /// An InputError unless the final time and max steps lie beyond the
+  /// checkpoint a run resumes from.
+  void
+  require_beyond_checkpoint(const CommonParameters &params, const Checkpoint &checkpoint,
+                            const std::string &time_name);
 
   /// Write summary.json of a run.
   void

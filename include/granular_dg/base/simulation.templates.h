@@ -23,6 +23,7 @@
 #include <granular_dg/dg/time_integrator.h>
 
 #include <algorithm>
+#include <cstring>
 #include <chrono>
 #include <cmath>
 #include <type_traits>
@@ -98,6 +99,14 @@ namespace granular_dg
         , write_modes(write_modes)
       {}
 
+      /// (time, file) of every snapshot so far: a checkpoint keeps them, so
+      /// that a resumed run continues the numbering and solution.pvd.
+      std::vector<std::pair<double, std::string>> &
+      snapshot_records()
+      {
+        return records;
+      }
+
       /// Returns the name of the VTU/PVTU file written (empty if none).
       std::string
       write(const DoFHandler<dim> &dof_handler, const Mapping<dim> &mapping,
@@ -135,6 +144,8 @@ namespace granular_dg
         const MPI_Comm comm = solution.get_mpi_communicator();
         DataOut<dim>   data_out;
         DataOutBase::VtkFlags flags(time, index);
+        // deterministic files: a resumed run writes the same bytes
+        flags.print_date_and_time = false;
         // deal.II 9.4.1 writes broken high-order cells in 1D: subdivided
         // linear patches there, Lagrange cells in 2D
         flags.write_higher_order_cells = (dim > 1);
@@ -298,6 +309,99 @@ namespace granular_dg
 
   namespace internal
   {
+    /// The solution cell by cell, keyed by CellId (partition independent):
+    /// rank 0 gets every cell, sorted by key, the other ranks "".
+    /// Collective.
+    template <int dim>
+    std::string
+    save_cell_values(const DoFHandler<dim> &dof_handler, const dg::VectorType &u)
+    {
+      using Key                        = CellId::binary_type;
+      const unsigned int n             = dof_handler.get_fe().n_dofs_per_cell();
+      const std::size_t  record        = sizeof(Key) + n * sizeof(double);
+      std::vector<types::global_dof_index> dofs(n);
+      std::string                          mine;
+      for (const auto &cell : dof_handler.active_cell_iterators())
+        if (cell->is_locally_owned())
+          {
+            const Key key = cell->id().template to_binary<dim>();
+            mine.append(reinterpret_cast<const char *>(&key), sizeof(Key));
+            cell->get_dof_indices(dofs);
+            for (const auto i : dofs)
+              {
+                const double v = u(i);
+                mine.append(reinterpret_cast<const char *>(&v), sizeof(double));
+              }
+          }
+      const MPI_Comm comm = u.get_mpi_communicator();
+      const auto     all  = Utilities::MPI::gather(comm, mine, 0);
+      if (Utilities::MPI::this_mpi_process(comm) != 0)
+        return "";
+      std::vector<std::pair<Key, const char *>> cells;
+      for (const auto &part : all)
+        for (std::size_t o = 0; o + record <= part.size(); o += record)
+          {
+            Key key;
+            std::memcpy(&key, part.data() + o, sizeof(Key));
+            cells.emplace_back(key, part.data() + o);
+          }
+      std::sort(cells.begin(), cells.end(),
+                [](const auto &a, const auto &b) { return a.first < b.first; });
+      ByteWriter w;
+      w.io(static_cast<std::uint64_t>(cells.size()));
+      w.io(n);
+      for (const auto &c : cells)
+        w.bytes.append(c.second, record);
+      return w.bytes;
+    }
+
+    /// Set the owned cells of u from what save_cell_values() wrote.
+    template <int dim>
+    void
+    load_cell_values(const DoFHandler<dim> &dof_handler, const std::string &bytes,
+                     dg::VectorType &u)
+    {
+      using Key = CellId::binary_type;
+      ByteReader    r(bytes);
+      std::uint64_t n_cells = 0;
+      unsigned int  n       = 0;
+      r.io(n_cells);
+      r.io(n);
+      const std::size_t record = sizeof(Key) + n * sizeof(double);
+      if (n != dof_handler.get_fe().n_dofs_per_cell() ||
+          n_cells != dof_handler.get_triangulation().n_global_active_cells() ||
+          bytes.size() != sizeof(std::uint64_t) + sizeof(unsigned int) + n_cells * record)
+        throw RunError("the checkpoint's solution does not fit this mesh (" +
+                       std::to_string(n_cells) + " cells of " + std::to_string(n) + " DoFs)");
+      const char *first = bytes.data() + sizeof(std::uint64_t) + sizeof(unsigned int);
+      auto        key_of = [&](const std::size_t i) {
+        Key key;
+        std::memcpy(&key, first + i * record, sizeof(Key));
+        return key;
+      };
+      std::vector<types::global_dof_index> dofs(n);
+      for (const auto &cell : dof_handler.active_cell_iterators())
+        if (cell->is_locally_owned())
+          {
+            const Key   key = cell->id().template to_binary<dim>();
+            std::size_t lo = 0, hi = n_cells;
+            while (lo < hi)
+              {
+                const std::size_t mid = (lo + hi) / 2;
+                if (key_of(mid) < key)
+                  lo = mid + 1;
+                else
+                  hi = mid;
+              }
+            if (lo == n_cells || key_of(lo) != key)
+              throw RunError("the checkpoint has no values for cell " + cell->id().to_string());
+            const char *values = first + lo * record + sizeof(Key);
+            cell->get_dof_indices(dofs);
+            for (unsigned int i = 0; i < n; ++i)
+              std::memcpy(&u(dofs[i]), values + i * sizeof(double), sizeof(double));
+          }
+    }
+
   /// The time loop of run_simulation() on one operator type (MatrixFree's
   /// DGOperator or, in 1D, the LineOperator).
   template <int dim, typename Physics, typename Operator>
@@ -330,8 +434,25 @@ namespace granular_dg
     dg::SSPRK3<> integrator;
     SceneHooks<dim> no_hooks;
     SceneHooks<dim> &hooks = scene.hooks ? *scene.hooks : no_hooks;
+    const CheckpointIdentity identity{scene.scene,
+                                      Physics::name,
+                                      dim,
+                                      degree,
+                                      tria.n_global_active_cells(),
+                                      dof_handler.n_dofs()};
+    // a resumed run takes its state from the checkpoint (below)
+    const bool                resume = params.resume && write_files;
+    std::optional<Checkpoint> checkpoint;
+    if (resume)
+      {
+        checkpoint = read_checkpoint(params.directory, identity, params.parameters, comm);
+        require_beyond_checkpoint(params, *checkpoint, scene.time_name);
+      }
+    hooks.set_resuming(resume);
     hooks.initialize(dof_handler, mapping, limiter.layout());
-    if (scene.initial_vector)
+    if (resume)
+      ;
+    else if (scene.initial_vector)
       {
         AssertThrow(scene.initial_vector->size() == solution.size(),
                     ExcMessage("the initial vector belongs to another discretisation"));
@@ -357,7 +478,6 @@ namespace granular_dg
     timer_storage.emplace(comm, timer_out, TimerOutput::never, TimerOutput::wall_times);
     TimerOutput &timer = *timer_storage;
 
-    const auto output_times = internal::output_schedule(params, scene.start_time);
     internal::SnapshotWriter<dim, Physics> snapshots(params.directory, scene.physics, degree,
                                                      params.profile_points, params.write_vtu,
                                                      params.write_modes);
@@ -379,12 +499,56 @@ namespace granular_dg
           }
         for (const auto &n : hooks.timeseries_names())
           header.push_back(n);
-        timeseries.open(params.directory + "/timeseries.csv", header);
+        if (!resume)
+          timeseries.open(params.directory + "/timeseries.csv", header);
       }
 
     double        t = scene.start_time, dt = 0.;
     unsigned long step = 0;
     unsigned int  troubled = 0;
+
+    // a checkpoint: the loop's state, the solution and the scene's state
+    // (written and read by the same io() sequence)
+    auto loop_state = [&](auto &ar, std::uint64_t &timeseries_size) {
+      ar.io(t);
+      ar.io(step);
+      ar.io(dt);
+      ar.io(troubled);
+      ar.io(snapshots.snapshot_records());
+      ar.io(timeseries_size);
+    };
+    auto save_checkpoint = [&]() {
+      ByteWriter    w;
+      std::uint64_t timeseries_size = root ? timeseries.size() : 0;
+      loop_state(w, timeseries_size);
+      w.io(save_cell_values(dof_handler, solution));
+      ByteWriter h;
+      hooks.save(h);
+      w.io(h.bytes);
+      return write_checkpoint(params.directory, identity, params.parameters, step, t, w.bytes,
+                              comm);
+    };
+    if (resume)
+      {
+        ByteReader    r(checkpoint->payload);
+        std::uint64_t timeseries_size = 0;
+        std::string   cells, hook_state;
+        loop_state(r, timeseries_size);
+        r.io(cells);
+        r.io(hook_state);
+        load_cell_values(dof_handler, cells, solution);
+        ByteReader h(hook_state);
+        hooks.load(h);
+        if (root)
+          timeseries.reopen(params.directory + "/timeseries.csv", timeseries_size);
+        result.resumed_from_step = step;
+        last_good = solution;
+        if (root)
+          std::cout << "  resuming from " << checkpoint->file << ": " << scene.time_name
+                    << " = " << format_number(t) << ", step " << step << std::endl;
+      }
+    const unsigned long first_step   = step;
+    const auto          output_times = internal::output_schedule(params, t);
     auto energy = [&](const Tensor<1, Physics::n_components> &U,
                       const typename Operator::template Coefficients<double> &a) {
       return scene.physics.energy(U, a);
@@ -438,7 +602,9 @@ namespace granular_dg
         hooks.post_limiter(u, stage_time);
       }
       StepPhases::Scope scope(phases, StepPhases::admissibility);
-      const auto        report = op.check_admissibility(u);
+      auto              report = op.check_admissibility(u);
+      if (report.ok)
+        report = dg::first_failure(hooks.check_admissibility(u), comm);
       if (!report.ok)
         throw internal::Inadmissible{stage_time, report};
     };
@@ -516,9 +682,13 @@ namespace granular_dg
         return result;
       }
 
-    record();
-    Progress progress(scene.start_time, params.final_time,
+    if (!resume)
+      record();
+    Progress progress(t, params.final_time,
                       (write_files && root) ? params.progress_interval : 0.);
+    const InterruptHandlers interrupt_handlers;
+    CheckpointSchedule      schedule(params.checkpoint_steps, params.checkpoint_seconds,
+                                write_files ? params.max_steps : 0, write_files, comm);
     // accumulates wall and CPU time of the steps alone (no output, no diagnostics)
     Timer loop_timer;
     loop_timer.stop();
@@ -527,9 +697,11 @@ namespace granular_dg
     try
       {
         {
-          const auto report = op.check_admissibility(solution);
+          auto report = op.check_admissibility(solution);
+          if (report.ok)
+            report = dg::first_failure(hooks.check_admissibility(solution), comm);
           if (!report.ok)
-            throw internal::Inadmissible{0., report, true};
+            throw internal::Inadmissible{t, report, true};
         }
         while (next_output < output_times.size())
           {
@@ -562,6 +734,36 @@ namespace granular_dg
                 ++next_output;
               }
             progress.update(step, t, dt);
+
+            const auto decision = schedule.poll(step);
+            std::string checkpoint_file;
+            if (decision.write)
+              {
+                TimerOutput::Scope scope(timer, "checkpoint");
+                checkpoint_file = save_checkpoint();
+                schedule.written();
+                if (root && !decision.stop() && params.progress_interval > 0)
+                  std::cout << "  checkpoint " << checkpoint_file << " (" << scene.time_name
+                            << " = " << format_number(t) << ", step " << step << ")"
+                            << std::endl;
+              }
+            if (decision.stop())
+              {
+                result.status = stop_status(decision, scene.time_name, t, step,
+                                            checkpoint_file);
+                result.n_steps     = step;
+                result.final_time  = t;
+                result.wall_time_s = wall_timer.wall_time();
+                if (write_files)
+                  write_summary(params.directory, scene.scene, dim, degree, result);
+                timer_storage.reset();
+                if (decision.signal != 0)
+                  throw Interrupted(decision.signal, result.status);
+                if (root)
+                  std::cout << "  " << result.status << std::endl;
+                result.final_solution = std::make_shared<dg::VectorType>(solution);
+                return result;
+              }
           }
       }
     catch (const internal::Inadmissible &failure)
@@ -586,10 +788,13 @@ namespace granular_dg
         else if (write_files)
           {
             solution = last_good;
-            const std::string file = snapshots.write(dof_handler, mapping, solution, t);
+            std::string file = snapshots.write(dof_handler, mapping, solution, t);
+            if (file.empty() && dim == 1)
+              file = internal::snapshot_name("profile-", snapshots.snapshot_records().size() - 1,
+                                             ".csv");
             msg << "; last good state (" << scene.time_name << " = " << format_number(t)
                 << ") written to " << params.directory << "/"
-                << (file.empty() ? "profile" : file);
+                << (file.empty() ? "summary.json only (Output/write vtu = false)" : file);
           }
         result.n_steps     = step;
         result.final_time  = t;
@@ -621,7 +826,7 @@ namespace granular_dg
     result.final_time  = t;
     result.time_loop_s     = loop_timer.wall_time();
     result.time_loop_cpu_s = loop_timer.cpu_time();
-    const double updates   = double(result.n_dofs) * dg::SSPRK3<>::n_stages * step;
+    const double updates = double(result.n_dofs) * dg::SSPRK3<>::n_stages * (step - first_step);
     result.dof_updates_per_s = result.time_loop_s > 0 ? updates / result.time_loop_s : 0;
     result.dof_updates_per_cpu_s_per_rank =
       result.time_loop_cpu_s > 0 ?

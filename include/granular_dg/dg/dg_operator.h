@@ -1,6 +1,7 @@
 #pragma once
 
 #include <deal.II/base/function.h>
+#include <deal.II/base/mpi.h>
 #include <deal.II/dofs/dof_handler.h>
 #include <deal.II/fe/mapping.h>
 #include <deal.II/lac/la_parallel_vector.h>
@@ -25,6 +26,31 @@ namespace granular_dg::dg
     std::vector<double>  state;
     std::string          reason;
   };
+
+  /// Collective: every rank gets the report of the lowest rank whose
+  /// report is not ok (rank 0 prints it), or its own when all are ok.
+  inline AdmissibilityReport
+  first_failure(AdmissibilityReport report, const MPI_Comm comm)
+  {
+    const unsigned int n_ranks = Utilities::MPI::n_mpi_processes(comm);
+    if (n_ranks == 1)
+      return report;
+    const unsigned int first =
+      Utilities::MPI::min(report.ok ? n_ranks : Utilities::MPI::this_mpi_process(comm), comm);
+    if (first == n_ranks)
+      return report;
+    std::vector<double> numbers = report.state;
+    for (unsigned int d = 0; d < 3; ++d)
+      numbers.push_back(report.position[d]);
+    const auto data = Utilities::MPI::broadcast(comm, std::make_pair(report.reason, numbers),
+                                                first);
+    report.ok     = false;
+    report.reason = data.first;
+    report.state.assign(data.second.begin(), data.second.end() - 3);
+    for (unsigned int d = 0; d < 3; ++d)
+      report.position[d] = data.second[data.second.size() - 3 + d];
+    return report;
+  }
 
   /**
    * Physics-free explicit DG operator on MatrixFree (after deal.II step-67):

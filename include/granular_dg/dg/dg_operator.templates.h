@@ -484,23 +484,6 @@ namespace granular_dg::dg
       }
     // every rank learns whether someone failed and gets the report of the
     // lowest failing rank (rank 0 prints it)
-    const MPI_Comm     comm    = solution.get_mpi_communicator();
-    const unsigned int n_ranks = Utilities::MPI::n_mpi_processes(comm);
-    const unsigned int first =
-      Utilities::MPI::min(report.ok ? n_ranks : Utilities::MPI::this_mpi_process(comm), comm);
-    if (first < n_ranks && n_ranks > 1)
-      {
-        std::vector<double> numbers = report.state;
-        for (unsigned int d = 0; d < 3; ++d)
-          numbers.push_back(report.position[d]);
-        const auto data =
-          Utilities::MPI::broadcast(comm, std::make_pair(report.reason, numbers), first);
-        report.ok     = false;
-        report.reason = data.first;
-        report.state.assign(data.second.begin(), data.second.end() - 3);
-        for (unsigned int d = 0; d < 3; ++d)
-          report.position[d] = data.second[data.second.size() - 3 + d];
-      }
-    return report;
+    return first_failure(report, solution.get_mpi_communicator());
   }
 } // namespace granular_dg::dg

@@ -16,6 +16,7 @@
 #include <granular_dg/network/graph.h>
 #include <granular_dg/network/junction.h>
 
+#include <cmath>
 #include <memory>
 #include <optional>
 #include <string>
@@ -164,6 +165,28 @@ namespace granular_dg::network
     /// max |u - v| over the Legendre modes and the vertex.
     double max_mode_difference(const NetworkProblem &other) const;
 
+    /// The state of a checkpoint (time, steps, last time step, far-end
+    /// inflow, the modes of every edge and the vertex value), written and
+    /// read by the same calls (ByteWriter/ByteReader).
+    template <typename Archive>
+    void
+    checkpoint_io(Archive &ar)
+    {
+      ar.io(t);
+      ar.io(inflow);
+      ar.io(dt_last);
+      ar.io(steps);
+      ar.io(u.vertex);
+      for (auto &e : u.edges)
+        {
+          std::vector<double> modes(e.begin(), e.end());
+          ar.io(modes);
+          if (modes.size() != e.size())
+            throw RunError("the checkpoint's network has other edge sizes");
+          std::copy(modes.begin(), modes.end(), e.begin());
+        }
+    }
+
     /// The solution at equally spaced points of every cell (both ends
     /// included): per edge the pairs (x, u).
     std::vector<std::vector<std::pair<double, double>>>
@@ -175,6 +198,12 @@ namespace granular_dg::network
     double evaluate(unsigned int edge, unsigned int cell, double xi, const NetworkState &s) const;
     double far_end_inflow(double time, const NetworkState &s) const;
     void   post_stage(NetworkState &s, double stage_time);
+    /// Degree 0: the range [min, max] of the cell averages, the vertex value
+    /// and the far-end Dirichlet data of the step from t to t + dt.
+    std::pair<double, double> range_of_step(double dt) const;
+    /// Degree 0: a StateFailure unless every cell average of s lies in the
+    /// step's range (widened by the stage's vertex value).
+    void check_maximum_principle(const NetworkState &s, double stage_time);
 
     Graph                 net;
     Discretisation        disc;
@@ -188,6 +217,8 @@ namespace granular_dg::network
     NetworkState               rhs;
     std::vector<Polynomials::Legendre> legendre;
     double                     t = 0., inflow = 0., h_min = 0., dt_last = 0.;
+    /// the range of the current step (degree 0's maximum principle)
+    std::pair<double, double>  bounds{-INFINITY, INFINITY};
     unsigned long              steps = 0;
     /// far-end inflow rate of each apply() call in the current step
     mutable std::vector<double> stage_inflow;

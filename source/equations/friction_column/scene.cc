@@ -100,8 +100,8 @@ namespace granular_dg::column
             q_basis.push_back(Polynomials::Legendre(k).value(q.point(i)[0]));
 
         // written row by row, so that a long run can be watched (and a failed
-        // one keeps its history)
-        if (directory.empty())
+        // one keeps its history); a resumed run continues them in load()
+        if (directory.empty() || resuming())
           return;
         history_file.open(directory + "/history.csv",
                           {"time", "max_velocity", "front_position", "front_strain",
@@ -200,6 +200,35 @@ namespace granular_dg::column
           {
             sample(U, t);
             next_sample += sample_dt;
+          }
+      }
+
+      void
+      save(ByteWriter &w) override
+      {
+        std::uint64_t history_size = history_file.is_open() ? history_file.size() : 0;
+        std::uint64_t sgn_map_size = 0;
+        if (sgn_map_file)
+          {
+            std::fflush(sgn_map_file);
+            sgn_map_size = std::ftell(sgn_map_file);
+          }
+        state_io(w, history_size, sgn_map_size);
+      }
+
+      void
+      load(ByteReader &r) override
+      {
+        std::uint64_t history_size = 0, sgn_map_size = 0;
+        state_io(r, history_size, sgn_map_size);
+        if (directory.empty())
+          return;
+        history_file.reopen(directory + "/history.csv", history_size);
+        if (prm.write_sgn_map)
+          {
+            const std::string name = directory + "/sgn-map.csv";
+            truncate_file(name, sgn_map_size);
+            sgn_map_file = std::fopen(name.c_str(), "a");
           }
       }
 
@@ -403,6 +432,30 @@ namespace granular_dg::column
         A.gauss_jordan();
         A.vmult(x, b);
         return x(0);
+      }
+
+      /// The running state of a checkpoint (save/load), and the sizes of
+      /// the files appended to.
+      template <typename Archive>
+      void
+      state_io(Archive &ar, std::uint64_t &history_size, std::uint64_t &sgn_map_size)
+      {
+        ar.io(stage);
+        ar.io(previous_sign);
+        ar.io(previous_state);
+        ar.io(velocity_sign_flips);
+        ar.io(critical_loadings);
+        ar.io(max_stuck_velocity);
+        ar.io(max_stuck_multiplier);
+        ar.io(first_critical_time);
+        ar.io(first_critical_position);
+        ar.io(last_critical_time);
+        ar.io(friction_work);
+        ar.io(wall_work);
+        ar.io(next_sample);
+        ar.io(history);
+        ar.io(history_size);
+        ar.io(sgn_map_size);
       }
 
       void
@@ -686,7 +739,7 @@ namespace granular_dg::column
       if (common.convergence)
         require(p.closed_form, "Diagnostics/closed form", "false",
                 "true: a convergence study needs the exact solution");
-      begin_output(prm, common);
+      begin_output(common);
       if (common.convergence)
         run_convergence_study<1, System>(
           [&](const unsigned int cells) { return make_scene(p, common, cells); }, common);

@@ -340,6 +340,22 @@ namespace granular_dg::hopper
           add_row(U, tau);
       }
 
+      void
+      save(ByteWriter &w) override
+      {
+        std::uint64_t steps_size = steps.is_open() ? steps.size() : 0;
+        state_io(w, steps_size);
+      }
+
+      void
+      load(ByteReader &r) override
+      {
+        std::uint64_t steps_size = 0;
+        state_io(r, steps_size);
+        if (steps_size > 0)
+          steps.reopen(directory + "/hopper-steps.csv", steps_size);
+      }
+
       std::vector<std::string>
       timeseries_names() const override
       {
@@ -386,6 +402,45 @@ namespace granular_dg::hopper
       }
 
     private:
+      /// The running state of a checkpoint (save/load): the monitors, the
+      /// stored rows of the field, the size of hopper-steps.csv.
+      template <typename Archive>
+      void
+      state_io(Archive &ar, std::uint64_t &steps_size)
+      {
+        ar.io(n_profiles);
+        ar.io(next_row_tau);
+        ar.io(min_margin);
+        ar.io(tau_min_margin);
+        ar.io(theta_min_margin);
+        ar.io(max_rel);
+        ar.io(final_rel);
+        ar.io(steps_size);
+        // rows: tau and the states, flattened
+        std::vector<double> flat;
+        for (const auto &row : rows)
+          {
+            flat.push_back(row.tau);
+            flat.push_back(row.U.size());
+            for (const auto &u : row.U)
+              for (unsigned int c = 0; c < System::n_components; ++c)
+                flat.push_back(u[c]);
+          }
+        ar.io(flat);
+        rows.clear();
+        for (std::size_t i = 0; i + 1 < flat.size();)
+          {
+            Row row;
+            row.tau                 = flat[i++];
+            const std::size_t n     = flat[i++];
+            row.U.resize(n);
+            for (auto &u : row.U)
+              for (unsigned int c = 0; c < System::n_components; ++c)
+                u[c] = flat[i++];
+            rows.push_back(std::move(row));
+          }
+      }
+
       struct MonitorPoint
       {
         unsigned int          cell;
@@ -794,7 +849,7 @@ namespace granular_dg::hopper
                                                  common.write_vtu);
       scene.hooks = hooks;
 
-      begin_output(prm, common);
+      begin_output(common);
       lower->write_csv(common.directory + "/radial-field.csv", p.radial_points);
       if (upper != lower)
         upper->write_csv(common.directory + "/radial-field-upper.csv", p.radial_points);
@@ -838,13 +893,16 @@ namespace granular_dg::hopper
       CommonParameters common;
       common.parse(prm);
       const Parameters p = parse(prm);
+      require(!common.resume || p.mode == Mode::march, "Checkpoint/resume", "true",
+              "false in Hopper/mode = " + mode_names.name(p.mode) +
+                " (it has no time loop to continue)");
       if (p.mode == Mode::march)
         run_march(p, prm, common);
       else
         {
           if (p.mode == Mode::radial)
             radial_field(p, p.theta_w, "Hopper/lower half-angle"); // validate first
-          begin_output(prm, common);
+          begin_output(common);
           if (p.mode == Mode::radial)
             run_radial(p, common);
           else

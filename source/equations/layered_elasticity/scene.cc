@@ -232,17 +232,66 @@ namespace granular_dg::elasticity
           {
             const double mean = U.local_element(layout->index(c, 0, 0));
             double       low  = min_strain_in_cell(U, c);
+            // (a negative mean is outside the admissible set the option
+            // declares: check_admissibility() stops the run)
             if (low >= 0. || mean <= 0.)
-              {
-                if (mean < 0.)
-                  ++negative_means;
-                continue;
-              }
+              continue;
             const double theta = std::min(1., mean / (mean - low));
             for (unsigned int m = 1; m < layout->n_modes(); ++m)
               U.local_element(layout->index(c, 0, m)) *= theta;
             ++scaled_cells;
           }
+      }
+
+      /// With the positivity option the model declares eps >= 0: a cell
+      /// whose mean strain is negative (below -1e-10; the scaling can only
+      /// fix the point values of a cell with a non-negative mean) is
+      /// inadmissible.
+      dg::AdmissibilityReport
+      check_admissibility(const dg::VectorType &U) const override
+      {
+        dg::AdmissibilityReport report;
+        if (!positivity)
+          return report;
+        for (unsigned int c = 0; c < layout->n_owned(); ++c)
+          {
+            // (round-off below a strain of 1e-10, e.g. ahead of a wave, is
+            // not tension)
+            const double mean = U.local_element(layout->index(c, 0, 0));
+            if (mean >= -1e-10)
+              continue;
+            report.ok        = false;
+            const auto x     = layout->cell(c)->center();
+            for (int d = 0; d < dim; ++d)
+              report.position[d] = x[d];
+            for (unsigned int i = 0; i < layout->n_components(); ++i)
+              report.state.push_back(U.local_element(layout->index(c, i, 0)));
+            report.reason = "negative mean strain with Limiter/strain positivity = true (the "
+                            "option declares eps >= 0; the scaling keeps the point values of a "
+                            "cell >= 0 only while its mean is; the cell averages are shown)";
+            break;
+          }
+        return report;
+      }
+
+      void
+      save(ByteWriter &w) override
+      {
+        // counters summed over the ranks: the state of the whole run
+        const MPI_Comm     comm   = MPI_COMM_WORLD;
+        unsigned long long scaled = Utilities::MPI::sum(scaled_cells, comm);
+        w.io(n_slices);
+        w.io(scaled);
+      }
+
+      void
+      load(ByteReader &r) override
+      {
+        r.io(n_slices);
+        r.io(scaled_cells);
+        // every rank read rank 0's sum; one of them keeps it
+        if (Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) != 0)
+          scaled_cells = 0;
       }
 
       std::vector<std::string>
@@ -278,8 +327,6 @@ namespace granular_dg::elasticity
             const MPI_Comm comm = U.get_mpi_communicator();
             diagnostics.add("positivity_scaled_cell_stages",
                             static_cast<long long>(Utilities::MPI::sum(scaled_cells, comm)));
-            diagnostics.add("negative_strain_means",
-                            static_cast<long long>(Utilities::MPI::sum(negative_means, comm)));
           }
       }
 
@@ -441,7 +488,7 @@ namespace granular_dg::elasticity
       unsigned int                n_gauss = 1;
       std::vector<double>         gauss;
       std::array<std::vector<double>, 3> at; ///< L_k at 0, 1/2, 1
-      unsigned long long          scaled_cells = 0, negative_means = 0;
+      unsigned long long          scaled_cells = 0;
     };
 
     void
@@ -821,33 +868,48 @@ namespace granular_dg::elasticity
           prm.leave_subsection();
           make_scene<dim>(prm, 0, "", true); // validates the second part too
         }
-      begin_output(prm, common);
+      begin_output(common);
       if (common.convergence)
         run_convergence_study<dim, System<dim>>(
           [&](unsigned int cells) { return make_scene<dim>(prm, cells, ""); }, common);
       else if (periodic_from > 0)
         {
-          CommonParameters first = common;
-          first.final_time       = periodic_from;
-          first.directory        = common.directory + "/before-periodic";
-          first.output_times.erase(std::remove_if(first.output_times.begin(),
-                                                  first.output_times.end(),
-                                                  [&](const double t) { return t >= periodic_from; }),
-                                   first.output_times.end());
-          if (Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) == 0)
-            prepare_output_directory(first.directory, common.overwrite);
-          MPI_Barrier(MPI_COMM_WORLD);
-          if (Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) == 0)
-            std::cout << "  part 1: t in [0, " << format_number(periodic_from)
-                      << "] with the boundary conditions of the file" << std::endl;
-          const auto before = run_simulation(scene, first, common.degree, true);
-          auto       after  = make_scene<dim>(prm, 0, common.directory, true);
-          after.start_time     = periodic_from;
-          after.initial_vector = before.final_solution;
-          if (Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) == 0)
+          // two runs: part 1 in DIR/before-periodic, part 2 in DIR. A resumed
+          // run continues part 2 if it wrote a checkpoint, else part 1.
+          const bool resume_second = common.resume && has_checkpoints(common.directory);
+          const bool root          = Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) == 0;
+          std::shared_ptr<dg::VectorType> part_1_end;
+          if (!resume_second)
+            {
+              CommonParameters first = common;
+              first.final_time       = periodic_from;
+              first.directory        = common.directory + "/before-periodic";
+              first.output_times.erase(std::remove_if(first.output_times.begin(),
+                                                      first.output_times.end(),
+                                                      [&](const double t) {
+                                                        return t >= periodic_from;
+                                                      }),
+                                       first.output_times.end());
+              if (root && !common.resume)
+                prepare_output_directory(first.directory, common.overwrite);
+              MPI_Barrier(MPI_COMM_WORLD);
+              if (root)
+                std::cout << "  part 1: t in [0, " << format_number(periodic_from)
+                          << "] with the boundary conditions of the file" << std::endl;
+              const auto before = run_simulation(scene, first, common.degree, true);
+              if (before.status != "completed")
+                return; // stopped at max steps: part 2 comes with --resume
+              part_1_end = before.final_solution;
+            }
+          auto after       = make_scene<dim>(prm, 0, common.directory, true);
+          after.start_time = periodic_from;
+          after.initial_vector = part_1_end; // none when part 2 resumes
+          CommonParameters second = common;
+          second.resume           = resume_second;
+          if (root)
             std::cout << "  part 2: t in [" << format_number(periodic_from) << ", "
                       << format_number(common.final_time) << "], periodic in x" << std::endl;
-          run_simulation(after, common, common.degree, true);
+          run_simulation(after, second, common.degree, true);
         }
       else
         run_simulation(scene, common, common.degree, true);

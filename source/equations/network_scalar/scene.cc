@@ -389,7 +389,7 @@ namespace granular_dg::network
       if (common.convergence)
         require(static_cast<bool>(c.exact), "Network/exact solution", "none",
                 "an exact solution: a convergence study measures errors");
-      begin_output(prm, common);
+      begin_output(common);
       if (common.convergence)
         run_network_convergence(c.graph, c.data, c.disc, c.vertex_value, *c.exact, common,
                                 c.cfl);

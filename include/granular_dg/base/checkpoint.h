@@ -1,0 +1,304 @@
+#pragma once
+
+#include <deal.II/base/mpi.h>
+
+#include <granular_dg/base/errors.h>
+
+#include <chrono>
+#include <csignal>
+#include <cstdint>
+#include <cstring>
+#include <string>
+#include <type_traits>
+#include <utility>
+#include <vector>
+
+/**
+ * Checkpoint and resume (doc/program.md, "Checkpoints").
+ *
+ * A checkpoint is one file OUTPUT/checkpoints/step-NNNNNNNNNN.ckpt: a text
+ * header (what run it belongs to: scene, physics, dim, degree, mesh size,
+ * time, step, every parameter of the run) and a binary payload with an
+ * FNV-1a checksum. It is written to a temporary file and renamed, so a
+ * reader never sees half of one; the newest two are kept. The payload holds
+ * the time loop's state, the solution (cell by cell, keyed by CellId, so a
+ * resume may use another number of MPI ranks) and the scene's running state
+ * (SceneHooks::save/load), written and read with the same io() calls.
+ */
+namespace granular_dg
+{
+  /// The payload of a checkpoint, written with io(x) for each member; a
+  /// ByteReader reads it back with the same sequence of io() calls.
+  class ByteWriter
+  {
+  public:
+    template <typename T>
+    void
+    io(const T &x)
+    {
+      static_assert(std::is_trivially_copyable_v<T>, "no serialisation for this type");
+      bytes.append(reinterpret_cast<const char *>(&x), sizeof(T));
+    }
+    void
+    io(const std::string &s)
+    {
+      io(static_cast<std::uint64_t>(s.size()));
+      bytes.append(s);
+    }
+    template <typename A, typename B>
+    void
+    io(const std::pair<A, B> &p)
+    {
+      io(p.first);
+      io(p.second);
+    }
+    template <typename T>
+    void
+    io(const std::vector<T> &v)
+    {
+      io(static_cast<std::uint64_t>(v.size()));
+      if constexpr (std::is_trivially_copyable_v<T>)
+        bytes.append(reinterpret_cast<const char *>(v.data()), v.size() * sizeof(T));
+      else
+        for (const auto &x : v)
+          io(x);
+    }
+
+    std::string bytes;
+  };
+
+  /// Reads what a ByteWriter wrote; a short or garbled payload throws a
+  /// RunError.
+  class ByteReader
+  {
+  public:
+    explicit ByteReader(const std::string &bytes)
+      : bytes(bytes)
+    {}
+
+    template <typename T>
+    void
+    io(T &x)
+    {
+      static_assert(std::is_trivially_copyable_v<T>, "no serialisation for this type");
+      std::memcpy(&x, take(sizeof(T)), sizeof(T));
+    }
+    void
+    io(std::string &s)
+    {
+      const std::size_t n = size();
+      s.assign(take(n), n);
+    }
+    template <typename A, typename B>
+    void
+    io(std::pair<A, B> &p)
+    {
+      io(p.first);
+      io(p.second);
+    }
+    template <typename T>
+    void
+    io(std::vector<T> &v)
+    {
+      const std::size_t n = size();
+      if constexpr (std::is_trivially_copyable_v<T>)
+        {
+          const char *p = take(n * sizeof(T));
+          v.resize(n);
+          if (n > 0)
+            std::memcpy(static_cast<void *>(v.data()), p, n * sizeof(T));
+        }
+      else
+        {
+          v.resize(n);
+          for (auto &x : v)
+            io(x);
+        }
+    }
+
+    bool
+    at_end() const
+    {
+      return position == bytes.size();
+    }
+
+  private:
+    std::size_t
+    size()
+    {
+      std::uint64_t n = 0;
+      io(n);
+      if (n > bytes.size() - position)
+        throw RunError("checkpoint payload garbled (a length beyond its end)");
+      return n;
+    }
+
+    const char *
+    take(const std::size_t n)
+    {
+      if (n > bytes.size() - position)
+        throw RunError("checkpoint payload ends early");
+      const char *p = bytes.data() + position;
+      position += n;
+      return p;
+    }
+
+    const std::string &bytes;
+    std::size_t        position = 0;
+  };
+
+  /// A flat list of "Section/name" = value pairs (the parameters of a run).
+  using ParameterList = std::vector<std::pair<std::string, std::string>>;
+
+  /// The parameters of deal.II's ShortPRM text as a flat list.
+  ParameterList
+  flatten_parameters(const std::string &short_prm_text);
+
+  /// The parameters a resumed run may change: the final time, the stop after
+  /// max steps, the checkpoint schedule, progress and overwrite. Everything
+  /// else must equal the checkpointed run's.
+  bool
+  may_change_on_resume(const std::string &parameter);
+
+  /// An InputError naming the first parameter (not allowed to change) whose
+  /// value differs; `what` names the other side ("the run in out/").
+  void
+  require_same_parameters(const ParameterList &before, const ParameterList &now,
+                          const std::string &what);
+
+  /// What a checkpoint must match to be resumed by a run.
+  struct CheckpointIdentity
+  {
+    std::string   scene, physics;
+    int           dim    = 1;
+    unsigned int  degree = 0;
+    unsigned long n_cells = 0, n_dofs = 0;
+  };
+
+  /// A checkpoint read back: where it stands and its payload.
+  struct Checkpoint
+  {
+    std::string   file;
+    unsigned long step = 0;
+    double        time = 0;
+    std::string   payload;
+  };
+
+  /// The directory holding the checkpoints of a run writing to directory.
+  std::string
+  checkpoint_directory(const std::string &directory);
+
+  /// Whether directory, or a subdirectory of it (a scene's part run), holds
+  /// a checkpoint file.
+  bool
+  has_checkpoints(const std::string &directory, bool search_subdirectories = false);
+
+  /// Write DIRECTORY/checkpoints/step-NNNNNNNNNN.ckpt (rank 0; collective
+  /// only through the barrier at the end) via a temporary file and a rename,
+  /// then remove all but the newest two. Returns the file name.
+  std::string
+  write_checkpoint(const std::string &directory, const CheckpointIdentity &id,
+                   const ParameterList &parameters, unsigned long step, double time,
+                   const std::string &payload, MPI_Comm comm);
+
+  /// The newest checkpoint in DIRECTORY/checkpoints that is complete, passes
+  /// its checksum and belongs to this run (same scene, physics, dimension,
+  /// degree, mesh and parameters, but those of may_change_on_resume());
+  /// unusable newer ones are skipped with a warning on stderr. An InputError
+  /// when there is none (naming what differs, or why each one is unusable).
+  /// Collective: rank 0 reads, the payload is broadcast.
+  Checkpoint
+  read_checkpoint(const std::string &directory, const CheckpointIdentity &id,
+                  const ParameterList &parameters, MPI_Comm comm);
+
+  /// FNV-1a, 64 bit, of a byte string (the payload checksum).
+  std::uint64_t
+  fnv1a(const std::string &bytes);
+
+  /// While it lives, SIGINT and SIGTERM set a flag that the time loop polls
+  /// after every step (CheckpointSchedule); a second signal ends the process
+  /// at once (the handler resets on first delivery). Outside time loops the
+  /// signals keep their default action.
+  class InterruptHandlers
+  {
+  public:
+    InterruptHandlers();
+    ~InterruptHandlers();
+    InterruptHandlers(const InterruptHandlers &) = delete;
+    InterruptHandlers &
+    operator=(const InterruptHandlers &) = delete;
+
+  private:
+    struct sigaction previous_int, previous_term;
+  };
+
+  /// The signal received so far (0: none).
+  int
+  interrupt_signal();
+
+  /// "SIGINT", "SIGTERM", ...
+  std::string
+  signal_name(int signal);
+
+  /**
+   * When a time loop writes a checkpoint or stops: every `every_steps`
+   * steps, every `every_seconds` of wall time, when a SIGINT/SIGTERM arrived
+   * (then it stops), and when the step counter reaches `max_steps` (then it
+   * stops). The decision is collective: under MPI every rank gets rank 0's
+   * wall clock and any rank's signal.
+   */
+  class CheckpointSchedule
+  {
+  public:
+    struct Decision
+    {
+      bool write  = false; ///< write a checkpoint now
+      int  signal = 0;     ///< stop: this signal arrived
+      bool max_steps = false; ///< stop: the step counter reached max steps
+      bool
+      stop() const
+      {
+        return signal != 0 || max_steps;
+      }
+    };
+
+    /// enabled false (no output directory): never write, still stop.
+    CheckpointSchedule(unsigned long every_steps, double every_seconds,
+                       unsigned long max_steps, bool enabled, MPI_Comm comm);
+
+    /// After completed step `step`.
+    Decision
+    poll(unsigned long step);
+
+    /// A checkpoint was written: restart the wall clock.
+    void
+    written();
+
+  private:
+    using Clock = std::chrono::steady_clock;
+    unsigned long     every_steps, max_steps;
+    double            every_seconds;
+    bool              enabled;
+    MPI_Comm          comm;
+    Clock::time_point last;
+  };
+
+  /// The status of a run that stopped early (d.stop()): "interrupted by
+  /// SIGINT at t = 1.5 (step 120); checkpoint FILE; continue with --resume",
+  /// or "stopped at Time stepping/max steps = 120 (t = 1.5); ...".
+  std::string
+  stop_status(const CheckpointSchedule::Decision &d, const std::string &time_name, double t,
+              unsigned long step, const std::string &checkpoint_file);
+
+  /// A run stopped by a signal (after writing a checkpoint): main() prints
+  /// what() and exits with 128 + signal.
+  class Interrupted : public std::runtime_error
+  {
+  public:
+    Interrupted(const int signal, const std::string &what)
+      : std::runtime_error(what)
+      , signal(signal)
+    {}
+    const int signal;
+  };
+} // namespace granular_dg
