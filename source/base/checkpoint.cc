@@ -273,10 +273,16 @@ namespace granular_dg
                            " (disk full or not writable)");
         }
         fs::rename(tmp, file);
-        // keep the newest two
+        // keep the newest two; drop what a run killed while writing left
         const auto files = checkpoint_files(directory);
         for (unsigned int i = 2; i < files.size(); ++i)
           fs::remove(files[i], ec);
+        for (const auto &entry : fs::directory_iterator(dir, ec))
+          {
+            const std::string n = entry.path().filename().string();
+            if (n.size() > 9 && n[0] == '.' && n.compare(n.size() - 9, 9, ".ckpt.tmp") == 0)
+              fs::remove(entry.path(), ec);
+          }
       }
     MPI_Barrier(comm);
     return file.string();
