@@ -67,6 +67,10 @@ import matplotlib
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 
+# reproducible SVG files (no date, fixed element ids): regenerated charts of
+# the same runs are byte-identical
+plt.rcParams["svg.hashsalt"] = "granular_dg study"
+
 HERE = os.path.dirname(os.path.abspath(__file__))
 ROOT = os.path.dirname(HERE)
 sys.path.insert(0, HERE)
@@ -312,11 +316,16 @@ def write_csv(path, rows):
         w.writerows(rows)
 
 
+def savefig(fig, out, name):
+    for ext in ("png", "svg"):
+        fig.savefig(os.path.join(out, "%s.%s" % (name, ext)), dpi=110,
+                    metadata={"Date": None} if ext == "svg" else None)
+    plt.close(fig)
+
+
 def save(fig, out, name):
     fig.tight_layout()
-    for ext in ("png", "svg"):
-        fig.savefig(os.path.join(out, "%s.%s" % (name, ext)), dpi=110)
-    plt.close(fig)
+    savefig(fig, out, name)
 
 
 class Context:
@@ -547,9 +556,7 @@ def stability_chart(ctx, name, sp, choices, degrees, rows, limits):
                ncol=len(handles), frameon=False)
     fig.suptitle("\n".join(textwrap.wrap("%s: SSP-RK3 stability, %s" % (name, sp["case"]), 120)),
                  fontsize=8.5, y=1 - 0.06 / height, va="top")
-    for ext in ("png", "svg"):
-        fig.savefig(os.path.join(ctx.out, "%s-stability.%s" % (name, ext)), dpi=110)
-    plt.close(fig)
+    savefig(fig, ctx.out, name + "-stability")
 
 
 def limits_table(out, limits):

@@ -329,6 +329,8 @@ def shock(ctx):
                    label="overshoot above eps_w, " + label)
         ax[0].plot([r["degree"] for r in sel], [r["undershoot_pct"] for r in sel], "s--", color=c,
                    label="undershoot below 0, " + label)
+    top = max([r.get("overshoot_pct", 0) for r in rows] + [r.get("undershoot_pct", 0) for r in rows] + [1])
+    ax[0].set_ylim(-0.05 * top, 1.6 * top)  # room for the legend above the curves
     ax[0].set_xticks(degrees)
     ax[0].set_xlabel("degree")
     ax[0].set_ylabel("%% of eps_w = %.4f at t = %g" % (eps_w, t_end))
