@@ -19,9 +19,8 @@ OUT_DIR (doc/study for the committed charts) gets
   failures.md                     the numbers of the failure charts;
   cheapest.{csv,md}, runtime.txt.
 Runs go to OUT_DIR/runs/ (reused when their summary.json exists; delete to
-rerun). The work-precision runs go one at a time (their CPU times are
-charted); the stability and failure runs, whose times are not used, go
---jobs at a time (default 2). doc/study/README.md reads the charts.
+rerun). Runs go --jobs at a time (default 2); the charted CPU times are
+those of each process. doc/study/README.md reads the charts.
 
 The per-scene work-precision description (SCENES below): the case file, the
 mesh parameter and its values, the degrees, the CFL number (per degree), how
@@ -33,7 +32,7 @@ Classification of a stability run (fixed mesh, to the final time):
   blown up      exit 2 with a non-finite state, or an error > the map's
                 blow-up level (1 for the O(0.1-1) data of the exact-solution
                 cases; 100 for the layered case, whose reference strain has
-                L1 norm 12);
+                L1 norm 11.7, the wall displacement at t = 50);
   inadmissible  exit 2 naming another admissibility test (negative sigma',
                 the hopper's loss of hyperbolicity);
   oscillatory   completed, but: for an energy-stable case (energy=True: the
