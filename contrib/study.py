@@ -1,48 +1,64 @@
 #!/usr/bin/python3
 """Speed against accuracy across the scenes (issue 7): work-precision charts,
-CFL x degree stability maps with the limits found by bisection, and the
-cheapest configuration reaching two target errors per scene.
+stability maps CFL x degree x (flux, limiter) with the limits found by
+bisection, the cheapest configuration reaching two target errors per scene,
+and where the methods fail (contrib/study_failures.py).
 
-    /usr/bin/python3 contrib/study.py BUILD_DIR OUT_DIR [--quick] [--only scene,...]
-        [--skip-stability] [--skip-work-precision]
+    /usr/bin/python3 contrib/study.py BUILD_DIR OUT_DIR [--quick] [--jobs N]
+        [--only scene,...] [--skip-work-precision] [--skip-stability] [--skip-failures]
 
-OUT_DIR (doc/study for the committed charts) gets, per scene S,
-  S-work-precision.{png,svg,csv}  error against CPU time of the time loop and
-                                  against the wall time of the run, one curve
-                                  per degree (log-log);
-  S-stability.{png,svg,csv}       CFL x degree map and the bisected limits;
-and cheapest.{csv,md}, stability-limits.csv, runtime.txt. Runs go to
-OUT_DIR/runs/ (reused when their summary.json exists; delete to rerun).
-One granular_dg process at a time. doc/study/README.md reads the charts.
+OUT_DIR (doc/study for the committed charts) gets
+  S-work-precision.{png,svg,csv}  per scene S: error against CPU time of the
+                                  time loop and against the wall time of the
+                                  run, one curve per degree (log-log);
+  M-stability.{png,svg,csv}       per stability map M (STABILITY below): CFL x
+                                  degree, one panel per (flux, limiter) choice,
+                                  every run marked, the bisected limits;
+  stability-limits.{csv,md}       the limits of all maps;
+  failure-F.{png,svg,csv}         per failure mode F (contrib/study_failures.py);
+  failures.md                     the numbers of the failure charts;
+  cheapest.{csv,md}, runtime.txt.
+Runs go to OUT_DIR/runs/ (reused when their summary.json exists; delete to
+rerun). Runs go --jobs at a time (default 2); the charted CPU times are
+those of each process. doc/study/README.md reads the charts.
 
-The per-scene description (SCENES below): the case file, the mesh parameter
-and its values, the degrees, the CFL number used for the work-precision runs
-(per degree), how the error against the exact solution is read from
-summary.json, the two target errors, and the mesh and CFL grid of the
-stability map (None: no map).
+The per-scene work-precision description (SCENES below): the case file, the
+mesh parameter and its values, the degrees, the CFL number (per degree), how
+the error against the exact solution is read from summary.json, the two
+target errors. The stability maps (STABILITY): case, mesh, error, degrees and
+the (flux, limiter) choices.
 
 Classification of a stability run (fixed mesh, to the final time):
-  blown up      exit 2 with a non-finite state, or an error > 1 (the data are O(0.1-1));
-  inadmissible  exit 2 naming another admissibility test (e.g. negative strain);
-  oscillatory   completed, but: for an energy-stable case (stability energy=True:
-                the linear wave with the dissipative LLF flux) the discrete energy
-                grew; otherwise (the limited column, whose energy is fed by the
-                wall) the error is > 2 e0, e0 = the error of the same degree at the
-                smallest CFL of the grid (the limiter holds the run bounded, the
-                instability shows as lost accuracy);
+  blown up      exit 2 with a non-finite state, or an error > the map's
+                blow-up level (1 for the O(0.1-1) data of the exact-solution
+                cases; 100 for the layered case, whose reference strain has
+                L1 norm 11.7, the wall displacement at t = 50);
+  inadmissible  exit 2 naming another admissibility test (negative sigma',
+                the hopper's loss of hyperbolicity);
+  oscillatory   completed, but: for an energy-stable case (energy=True: the
+                linear wave with the dissipative LLF flux, no limiter) the
+                discrete energy grew; otherwise the error is > 2 e0, e0 = the
+                error of the same degree and choice at the smallest CFL of the
+                grid (a limiter keeps such a run bounded, the instability shows
+                as lost accuracy);
   stable        completed, otherwise;
-  refused       exit 1: the program's input check refuses the CFL number
-                (lead's require_stable_cfl, newer than this study's runs).
+  refused       exit 1: the program's input check refuses the run.
 The limit is the largest stable CFL, bisected between the largest stable and
-the smallest non-stable grid value (relative width 2 % full, 8 % quick).
+the smallest non-stable grid value (relative width 5 %, 15 % with --quick).
+The grid: CFL = f/(2p+1), f in {0.5, 1, 1.5, 2, 3} (the linear wave: 0.25 to
+3), at most 1 (the program's range of the CFL number); in the full study,
+while every run is stable, on with f = 5, 8, 12 (limited schemes stay bounded
+far beyond the linear limit).
 """
 import argparse
+import concurrent.futures
 import csv
 import json
 import math
 import os
 import subprocess
 import sys
+import threading
 import time
 
 import matplotlib
@@ -50,10 +66,20 @@ import matplotlib
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 
+# reproducible SVG files (no date, fixed element ids): regenerated charts of
+# the same runs are byte-identical
+plt.rcParams["svg.hashsalt"] = "granular_dg study"
+
 HERE = os.path.dirname(os.path.abspath(__file__))
 ROOT = os.path.dirname(HERE)
+sys.path.insert(0, HERE)
+import study_failures  # noqa: E402
+
 QUIET = ["Output/output times=", "Output/write vtu=false", "Output/progress interval=0",
          "Output/overwrite=true"]
+# SSP-RK3 with upwind DG of degree p on u_t + u_x = 0: the linear stability
+# limit of nu = a dt/h (Fourier analysis, contrib/dg_cfl_limits.py)
+LINEAR_RK3 = {0: 1.256373, 1: 0.409590, 2: 0.209754, 3: 0.130094, 4: 0.089687}
 
 
 def sum_l1(s, d):
@@ -61,6 +87,11 @@ def sum_l1(s, d):
     e = s.get("errors", {})
     vals = [v[0] for k, v in e.items() if k.endswith("_l1_l2_linf")]
     return sum(vals) if vals else float("nan")
+
+
+def strain_l1(s, d):
+    """L1 error of the strain (component 0) against the reference."""
+    return s.get("errors", {}).get("component_0_l1_l2_linf", [float("nan")])[0]
 
 
 def network_l1(s, d):
@@ -89,30 +120,33 @@ def cpu_loop(s):
     return s.get("time_loop_cpu_s", float("nan"))
 
 
+HOPPER_QUIET = ["Hopper output/step series interval=0", "Hopper output/sample points=2001"]
+
 SCENES = {
     # m = 1, t = 4 against the closed form (the frozen region included)
     "column": dict(
         prm="tests/column/m1_base.prm", mesh="Mesh/cells",
-        cells=[25, 50, 100, 200, 400, 800, 1600], quick_cells=[25, 50, 100, 200],
+        cells=[25, 50, 100, 200, 400, 800, 1600], quick_cells=[50, 200],
         degrees=[0, 1, 2, 3], quick_degrees=[1, 2], cfl=lambda p: 0.9 / (2 * p + 1),
+        max_cells={3: 800},  # P3 is the most expensive per accuracy here
         error=sum_l1, error_name="L1 error (strain + velocity) at t = 4",
-        targets=[1e-2, 1e-3], stability=dict(cells=200), extra=[]),
+        targets=[1e-2, 1e-3], extra=[]),
     # the smooth periodic linear wave of the layered_strip scene (1D)
     "layered_1d": dict(
         prm="prm/elasticity_linear_wave.prm", mesh="Mesh/cells x",
-        cells=[8, 16, 32, 64, 128, 256], quick_cells=[8, 16, 32],
+        cells=[8, 16, 32, 64, 128, 256], quick_cells=[8, 32],
         degrees=[0, 1, 2, 3, 4], quick_degrees=[1, 2],
         # 0.9/(2p+1), but P4 blows up there (its limit is ~0.09): 0.07
         cfl=lambda p: 0.07 if p == 4 else 0.9 / (2 * p + 1),
         error=sum_l1, error_name="L1 error (strain + velocity) at t = 1",
-        targets=[1e-4, 1e-7], stability=dict(cells=32, energy=True), extra=[]),
+        targets=[1e-4, 1e-7], extra=[]),
     # the 2D strip scene on the same wave, 2 cells across in y (periodic)
     "layered_2d": dict(
         prm="prm/elasticity_linear_wave.prm", mesh="Mesh/cells x",
         cells=[8, 16, 32, 64], quick_cells=[8, 16],
         degrees=[1, 2, 3], quick_degrees=[2], cfl=lambda p: 0.9 / (2 * p + 1),
         error=sum_l1, error_name="L1 error (strain + velocity) at t = 1",
-        targets=[1e-4, 1e-6], stability=None,
+        targets=[1e-4, 1e-6],
         extra=["Mesh/dimension=2", "Mesh/cells y=2", "Mesh/y min=0", "Mesh/y max=0.25",
                "Boundary conditions/bottom=periodic", "Boundary conditions/top=periodic",
                "Initial condition/velocity=-0.1*sin(2*pi*x); 0",
@@ -122,23 +156,98 @@ SCENES = {
     # doc/network.md)
     "network": dict(
         prm="prm/network_smooth.prm", mesh="Network/cells per unit length",
-        cells=[8, 16, 32, 64, 128, 256, 512], quick_cells=[8, 16, 32],
+        cells=[8, 16, 32, 64, 128, 256, 512], quick_cells=[8, 32],
         degrees=[0, 1, 2, 3], quick_degrees=[1, 2],
         cfl=lambda p: {0: 0.5, 1: 0.3, 2: 0.18, 3: 0.03}[p],
+        max_cells={3: 256},  # P3 at 512 cells: 1e-11, the round-off floor, 22 s CPU
         error=network_l1, error_name="L1 error (edges + vertex) at t = 0.5",
-        targets=[1e-3, 1e-5], stability=None, extra=["Network/vertex width factor=0"]),
+        targets=[1e-3, 1e-5], extra=["Network/vertex width factor=0"]),
     # the 30 deg cone marched to tau = 1 against the exact radial field,
     # without the limiter (with it P2 and P3 are capped at 3rd order, doc/hopper.md)
     "hopper": dict(
         prm="prm/hopper_radial_cone.prm", mesh="Hopper/cells",
-        cells=[25, 50, 100, 200, 400], quick_cells=[25, 50, 100],
+        cells=[25, 50, 100, 200, 400], quick_cells=[25, 100],
         degrees=[1, 2, 3], quick_degrees=[1, 2],
         cfl=lambda p: {1: 1 / 3., 2: 1 / 5., 3: 0.12}[p],
+        max_cells={2: 200, 3: 200},
         error=hopper_radial, error_name="relative difference to the radial field at tau = 1",
-        targets=[1e-3, 1e-5], stability=None,
-        extra=["Time stepping/final time=1", "Hopper output/step series interval=0",
-               "Hopper output/sample points=2001", "Limiter/scheme=none"]),
+        targets=[1e-3, 1e-5],
+        extra=["Time stepping/final time=1", "Limiter/scheme=none"] + HOPPER_QUIET),
 }
+
+
+def flux_limiter(flux, limiter):
+    return ["Discretization/numerical flux=" + flux, "Limiter/scheme=" + limiter]
+
+
+# Stability maps. choices: (label, --set overrides); quick_choices: indices
+# used with --quick; p0_choices: the choices run at degree 0 (default all;
+# degree 0 has no slopes to limit, so choices that differ only in the
+# limiter are one scheme there); the CFL grid is f/(2p+1) for f in factors, at most
+# 1 (the program refuses larger CFL numbers).
+STABILITY = {
+    # the smooth linear wave in one material: LLF = impedance = upwind flux here
+    "layered_1d": dict(
+        scene="layered_1d", prm="prm/elasticity_linear_wave.prm", mesh="Mesh/cells x", cells=32,
+        case="smooth linear wave, one material, 32 cells, t = 1 (exact solution)",
+        extra=[], error=sum_l1, energy=True, blowup=1.0,
+        degrees=[0, 1, 2, 3, 4], quick_degrees=[1, 2],
+        factors=[0.25, 0.5, 0.8, 1.0, 1.2, 1.5, 2.0, 3.0], quick_factors=[0.5, 1.5],
+        choices=[("LLF, no limiter", flux_limiter("local_lax_friedrichs", "none"))],
+        quick_choices=[0]),
+    # case (b) of doc/layered.md shortened (layers of width 1, rho = K = 3 | 1,
+    # 4 cells per layer, t = 50) against a P3 impedance run at 32 cells per layer
+    "layered_interfaces": dict(
+        scene="layered_1d", prm="prm/layered_1d.prm", mesh="Mesh/cells x",
+        cells=4 * study_failures.LAYERS,
+        case="layered strip (rho = K = 3 | 1, layers of width 1), 4 cells per layer, t = %g "
+             "(reference: P3 impedance, 32 cells per layer; 8 with --quick)" % study_failures.LAYERED_T,
+        extra=study_failures.LAYERED_SHORT, setup=study_failures.layered_reference_sets,
+        error=strain_l1, blowup=100.0,
+        degrees=[1, 2, 3], quick_degrees=[2],
+        choices=[("LLF on (eps, m), no limiter", flux_limiter("local_lax_friedrichs", "none")),
+                 ("LLF + componentwise", flux_limiter("local_lax_friedrichs", "componentwise")),
+                 ("LLF + characteristic", flux_limiter("local_lax_friedrichs", "characteristic")),
+                 ("impedance, no limiter", flux_limiter("impedance", "none")),
+                 ("impedance + flux_variables", flux_limiter("impedance", "flux_variables"))],
+        quick_choices=[1, 3]),
+    # the column m = 1 (friction projection) against the closed form
+    "column": dict(
+        scene="column", prm="tests/column/m1_base.prm", mesh="Mesh/cells", cells=200,
+        case="column m = 1, 200 cells, t = 4 (closed form), friction projection",
+        extra=[], error=sum_l1, blowup=1.0, p0_choices=[0],
+        degrees=[0, 1, 2, 3], quick_degrees=[1],
+        choices=[("characteristic", ["Limiter/scheme=characteristic"]),
+                 ("componentwise", ["Limiter/scheme=componentwise"]),
+                 ("no limiter", ["Limiter/scheme=none"])],
+        quick_choices=[0, 1]),
+    # Burgers on the star graph with a shock through the vertex (exact solution)
+    "network": dict(
+        scene="network", prm="prm/network_example_7_5.prm", mesh="Network/cells per unit length",
+        cells=64, case="example 7.5 (Burgers, shock through the vertex), 64 cells per edge, "
+                       "t = 0.5 (exact solution)",
+        extra=[], error=network_l1, blowup=1.0,
+        degrees=[0, 1, 2, 3], quick_degrees=[1],
+        choices=[("upwind (Godunov) + componentwise", flux_limiter("upwind", "componentwise")),
+                 ("LLF + componentwise", flux_limiter("local_lax_friedrichs", "componentwise")),
+                 ("upwind (Godunov), no limiter", flux_limiter("upwind", "none"))],
+        p0_choices=[0, 1], quick_choices=[0, 1]),
+    # the 30 deg cone's radial field marched to tau = 1 (exact)
+    "hopper": dict(
+        scene="hopper", prm="prm/hopper_radial_cone.prm", mesh="Hopper/cells", cells=50,
+        case="30 deg cone, radial field marched to tau = 1 on 50 cells (exact)",
+        extra=["Time stepping/final time=1"] + HOPPER_QUIET, error=hopper_radial, blowup=1.0,
+        degrees=[1, 2, 3], quick_degrees=[1],
+        choices=[("Roe-LF + characteristic (GM)", flux_limiter("roe_lax_friedrichs", "characteristic")),
+                 ("Roe-LF, no limiter", flux_limiter("roe_lax_friedrichs", "none")),
+                 ("LLF + characteristic", flux_limiter("local_lax_friedrichs", "characteristic"))],
+        quick_choices=[]),
+}
+DEFAULT_FACTORS = [0.5, 1.0, 1.5, 2.0, 3.0]
+QUICK_FACTORS = [0.5, 1.5]
+# (full study) while every grid run is stable, the grid goes on with these
+# factors up to CFL 1: where a limiter holds the scheme bounded
+EXTEND_FACTORS = [5.0, 8.0, 12.0]
 
 
 def load():
@@ -146,22 +255,35 @@ def load():
         return f.read().split()[0]
 
 
+COUNT = {"executed": 0, "reused": 0}
+COUNT_LOCK = threading.Lock()
+
+
+def count(what):
+    with COUNT_LOCK:
+        COUNT[what] += 1
+
+
 def run(build, d, prm, sets):
     """granular_dg PRM with --set overrides into directory d; reused when
     d/summary.json and d/exit.txt exist. Returns (exit code, summary, stderr)."""
     done = os.path.join(d, "exit.txt")
     if os.path.exists(done) and os.path.exists(os.path.join(d, "summary.json")):
+        count("reused")
         with open(done) as f:
             code, err = f.read().split("\n", 1)
         with open(os.path.join(d, "summary.json")) as f:
             return int(code), json.load(f), err
     os.makedirs(d, exist_ok=True)
+    count("executed")
     cmd = [os.path.join(build, "granular_dg"), os.path.join(ROOT, prm), "--set", "Output/directory=" + d]
     for s in QUIET + sets:
         cmd += ["--set", s]
     l0 = load()
     t0 = time.time()
-    p = subprocess.run(cmd, capture_output=True, text=True)
+    # a singleton MPI start without its daemon: 0.2 s less per run here
+    env = dict(os.environ, OMPI_MCA_ess_singleton_isolated="1")
+    p = subprocess.run(cmd, capture_output=True, text=True, env=env)
     wall = time.time() - t0
     err = p.stderr.strip().replace("\n", " ")
     s = {}
@@ -181,24 +303,74 @@ def tag(v):
     return ("%.6g" % v).replace(".", "_")
 
 
-def work_precision(build, out, name, sc, quick):
-    degrees = sc["quick_degrees"] if quick else sc["degrees"]
-    cells = sc["quick_cells"] if quick else sc["cells"]
-    rows = []
-    for p in degrees:
-        for n in cells:
-            cfl = sc["cfl"](p)
-            d = os.path.join(out, "runs", name, "wp-p%d-n%d" % (p, n))
-            code, s, err = run(build, d, sc["prm"], sc["extra"] + [
-                "Discretization/degree=%d" % p, "%s=%d" % (sc["mesh"], n),
-                "Time stepping/CFL number=%.12g" % cfl])
-            e = sc["error"](s, d) if code == 0 else float("nan")
-            rows.append(dict(scene=name, degree=p, cells=n, cfl=cfl, exit=code, error=e,
-                             n_dofs=s.get("n_dofs", ""), steps=s.get("n_time_steps", ""),
-                             time_loop_cpu_s=cpu_loop(s), run_wall_s=s["_run_wall_s"],
-                             load=s["_load"]))
-            print("%s P%d n=%d: exit %d error %.3e cpu %.3g s" % (
-                name, p, n, code, e, rows[-1]["time_loop_cpu_s"]), flush=True)
+def write_csv(path, rows):
+    if not rows:
+        return
+    keys = []
+    for r in rows:
+        keys += [k for k in r if k not in keys]
+    with open(path, "w") as f:
+        w = csv.DictWriter(f, fieldnames=keys)
+        w.writeheader()
+        w.writerows(rows)
+
+
+def savefig(fig, out, name):
+    for ext in ("png", "svg"):
+        fig.savefig(os.path.join(out, "%s.%s" % (name, ext)), dpi=110,
+                    metadata={"Date": None} if ext == "svg" else None)
+    plt.close(fig)
+
+
+def save(fig, out, name):
+    fig.tight_layout()
+    savefig(fig, out, name)
+
+
+class Context:
+    """What the parts of the study share: where to run and write, and how."""
+
+    def __init__(self, build, out, quick, jobs):
+        self.build, self.out, self.quick, self.jobs = build, out, quick, jobs
+        self.write_csv, self.save, self.tag = write_csv, save, tag
+        self.linear_rk3 = LINEAR_RK3
+        self.failure_notes = []
+
+    def run(self, d, prm, sets):
+        return run(self.build, os.path.join(self.out, "runs", d), prm, sets)
+
+    def rundir(self, d):
+        return os.path.join(self.out, "runs", d)
+
+    def pmap(self, f, items):
+        """f over items, --jobs at a time, results in order."""
+        items = list(items)
+        if self.jobs <= 1 or len(items) <= 1:
+            return [f(i) for i in items]
+        with concurrent.futures.ThreadPoolExecutor(self.jobs) as ex:
+            return list(ex.map(f, items))
+
+
+def work_precision(ctx, name, sc):
+    degrees = sc["quick_degrees"] if ctx.quick else sc["degrees"]
+    cells = sc["quick_cells"] if ctx.quick else sc["cells"]
+    def one(item):
+        p, n = item
+        cfl = sc["cfl"](p)
+        d = os.path.join(name, "wp-p%d-n%d" % (p, n))
+        code, s, err = ctx.run(d, sc["prm"], sc["extra"] + [
+            "Discretization/degree=%d" % p, "%s=%d" % (sc["mesh"], n),
+            "Time stepping/CFL number=%.12g" % cfl])
+        e = sc["error"](s, ctx.rundir(d)) if code == 0 else float("nan")
+        r = dict(scene=name, degree=p, cells=n, cfl=cfl, exit=code, error=e,
+                 n_dofs=s.get("n_dofs", ""), steps=s.get("n_time_steps", ""),
+                 time_loop_cpu_s=cpu_loop(s), run_wall_s=s["_run_wall_s"], load=s["_load"])
+        print("%s P%d n=%d: exit %d error %.3e cpu %.3g s" % (
+            name, p, n, code, e, r["time_loop_cpu_s"]), flush=True)
+        return r
+
+    rows = ctx.pmap(one, [(p, n) for p in degrees for n in cells
+                          if n <= sc.get("max_cells", {}).get(p, n)])
     # blown up: exit 2, an error > 1, or an error above the coarser mesh's
     # (an instability growing: e.g. P4 above its CFL limit)
     for p in degrees:
@@ -206,7 +378,7 @@ def work_precision(build, out, name, sc, quick):
         for r in [r for r in rows if r["degree"] == p]:
             r["blown_up"] = int(r["exit"] != 0 or not (r["error"] <= min(1., previous)))
             previous = r["error"] if math.isfinite(r["error"]) else previous
-    write_csv(os.path.join(out, name + "-work-precision.csv"), rows)
+    write_csv(os.path.join(ctx.out, name + "-work-precision.csv"), rows)
     fig, axes = plt.subplots(1, 2, figsize=(10, 4.2), sharey=True)
     for ax, key, label in ((axes[0], "time_loop_cpu_s", "CPU time of the time loop [s]"),
                            (axes[1], "run_wall_s", "wall time of the run [s]")):
@@ -223,10 +395,7 @@ def work_precision(build, out, name, sc, quick):
     axes[0].legend(fontsize=8)
     fig.suptitle("%s: error against the exact solution vs cost (%s, SSP-RK3)" % (name, sc["prm"]),
                  fontsize=10)
-    fig.tight_layout()
-    for ext in ("png", "svg"):
-        fig.savefig(os.path.join(out, "%s-work-precision.%s" % (name, ext)), dpi=110)
-    plt.close(fig)
+    save(fig, ctx.out, name + "-work-precision")
     return rows
 
 
@@ -238,17 +407,17 @@ def energy_grew(d):
     return not (e_last <= e_first * (1 + 1e-10))
 
 
-def classify(code, err, e, e0, grew=None):
+def classify(code, err, e, e0, grew=None, blowup=1.0):
     if code == 2:
         low = err.lower()
         if "finite" in low or "nan" in low or "inf" in low:
             return "blown up"
         return "inadmissible"
-    if code == 1:  # bad input: the program refuses a CFL above its built-in limit
+    if code == 1:  # bad input: the program refuses the run
         return "refused"
     if code != 0:
         return "failed"
-    if not math.isfinite(e) or e > 1:
+    if not math.isfinite(e) or e > blowup:
         return "blown up"
     if grew is not None:  # energy-stable scheme: growth is the instability
         return "oscillatory" if grew else "stable"
@@ -257,90 +426,150 @@ def classify(code, err, e, e0, grew=None):
     return "stable"
 
 
-def stability(build, out, name, sc, quick):
-    degrees = sc["quick_degrees"] if quick else sc["degrees"]
-    factors = [0.25, 0.5, 0.8, 1.0, 1.2, 1.5, 2.0, 3.0]
-    rows, limits = [], []
+def stability(ctx, name, sp):
+    """One map: for every (choice, degree) the CFL grid f/(2p+1), then the
+    bisection of the limit; the pairs run --jobs at a time."""
+    degrees = sp["quick_degrees"] if ctx.quick else sp["degrees"]
+    choices = [sp["choices"][i] for i in sp["quick_choices"]] if ctx.quick else sp["choices"]
+    if not choices or not degrees:
+        return [], []
+    factors = sp.get("quick_factors", QUICK_FACTORS) if ctx.quick else \
+        sp.get("factors", DEFAULT_FACTORS)
+    width = 0.15 if ctx.quick else 0.05
+    cap = 1.0  # the program's range of Time stepping/CFL number: (0, 1]
+    extra = sp["extra"] + (sp["setup"](ctx) if "setup" in sp else [])
+    p0 = [sp["choices"][i] for i in sp.get("p0_choices", range(len(sp["choices"])))]
+    pairs = [(ci, p) for ci in range(len(choices)) for p in degrees if p > 0 or choices[ci] in p0]
 
-    def one(p, cfl, e0):
-        d = os.path.join(out, "runs", name, "st-p%d-cfl%s" % (p, tag(cfl)))
-        code, s, err = run(build, d, sc["prm"], sc["extra"] + [
-            "Discretization/degree=%d" % p, "%s=%d" % (sc["mesh"], sc["stability"]["cells"]),
-            "Time stepping/CFL number=%.12g" % cfl, "Time stepping/check stability limit=false"])
-        e = sc["error"](s, d) if code == 0 else float("nan")
-        grew = energy_grew(d) if code == 0 and sc["stability"].get("energy") else None
-        c = classify(code, err, e, e0, grew)
-        rows.append(dict(scene=name, degree=p, cfl=cfl, exit=code, error=e, state=c,
-                         time_loop_cpu_s=cpu_loop(s), message=err[:200]))
-        print("%s stability P%d CFL %.4g: %s (error %.3e)" % (name, p, cfl, c, e), flush=True)
-        return c, e
+    def pair(item):
+        ci, p = item
+        label, sets = choices[ci]
+        rows = []
 
-    for p in degrees:
-        grid = sorted({min(1.0, f / (2 * p + 1)) for f in factors})
+        def one(cfl, e0):
+            d = os.path.join(name, "st-c%d-p%d-cfl%s" % (sp["choices"].index(choices[ci]), p, tag(cfl)))
+            code, s, err = ctx.run(d, sp["prm"], extra + sets + [
+                "Discretization/degree=%d" % p, "%s=%d" % (sp["mesh"], sp["cells"]),
+                "Time stepping/CFL number=%.12g" % cfl, "Time stepping/check stability limit=false"])
+            e = sp["error"](s, ctx.rundir(d)) if code == 0 else float("nan")
+            grew = energy_grew(ctx.rundir(d)) if code == 0 and sp.get("energy") else None
+            c = classify(code, err, e, e0, grew, sp["blowup"])
+            rows.append(dict(map=name, scene=sp["scene"], choice=label, degree=p, cfl=cfl, exit=code,
+                             error=e, state=c, time_loop_cpu_s=cpu_loop(s), message=err[:200]))
+            print("%s [%s] P%d CFL %.4g: %s (error %.3e)" % (name, label, p, cfl, c, e), flush=True)
+            return c, e
+
+        grid = sorted({min(cap, f / (2 * p + 1)) for f in factors})
         e0 = None
         states = []
         for cfl in grid:
-            c, e = one(p, cfl, e0)
+            c, e = one(cfl, e0)
             if e0 is None:
-                e0 = e if c == "stable" or math.isfinite(e) else None
+                e0 = e if math.isfinite(e) else None
             states.append((cfl, c))
+        for f in ([] if ctx.quick else EXTEND_FACTORS):
+            cfl = min(cap, f / (2 * p + 1))
+            if any(c != "stable" for _, c in states) or cfl <= states[-1][0]:
+                break
+            states.append((cfl, one(cfl, e0)[0]))
+        grid = [cfl for cfl, _ in states]
         stable = [cfl for cfl, c in states if c == "stable"]
         lo = max(stable) if stable else None
         above = [cfl for cfl, c in states if c != "stable" and lo is not None and cfl > lo]
         hi = min(above) if above else None
         if lo is not None and hi is not None:
-            while (hi - lo) / lo > (0.08 if quick else 0.02):
+            while (hi - lo) / lo > width:
                 mid = 0.5 * (lo + hi)
-                c, _ = one(p, mid, e0)
+                c, _ = one(mid, e0)
                 if c == "stable":
                     lo = mid
                 else:
                     hi = mid
-        first_bad = [c for cfl, c in sorted((r["cfl"], r["state"]) for r in rows
-                                             if r["degree"] == p) if hi is not None and cfl >= hi]
-        limits.append(dict(scene=name, degree=p, cfl_limit=lo if lo is not None else "",
-                           first_unstable_cfl=hi if hi is not None else "",
-                           limit_times_2p_plus_1=lo * (2 * p + 1) if lo is not None else "",
-                           state_above=first_bad[0] if first_bad else "none up to CFL 1"))
-    write_csv(os.path.join(out, name + "-stability.csv"), rows)
-    colors = {"stable": "tab:green", "oscillatory": "tab:orange", "inadmissible": "tab:purple",
-              "blown up": "tab:red", "refused": "gray", "failed": "black"}
-    markers = {"stable": "o", "oscillatory": "s", "inadmissible": "D", "blown up": "x", "refused": "_", "failed": "+"}
-    fig, ax = plt.subplots(figsize=(7, 4))
-    for state in colors:
-        sel = [r for r in rows if r["state"] == state]
-        if sel:
-            ax.scatter([r["cfl"] for r in sel], [r["degree"] for r in sel], c=colors[state],
-                       marker=markers[state], label=state, s=30)
-    for l in limits:
-        if l["cfl_limit"] != "":
-            ax.plot([l["cfl_limit"]] * 2, [l["degree"] - 0.3, l["degree"] + 0.3], "k-", lw=1.5)
-    ps = [l["degree"] for l in limits]
-    ax.plot([1 / (2 * p + 1) for p in ps], ps, "k:", lw=0.8, label="1/(2p+1)")
+        first_bad = [c for cfl, c in sorted((r["cfl"], r["state"]) for r in rows)
+                     if hi is not None and cfl >= hi]
+        limit = dict(map=name, scene=sp["scene"], choice=label, degree=p,
+                     cfl_limit=lo if lo is not None else "",
+                     first_unstable_cfl=hi if hi is not None else "",
+                     limit_times_2p_plus_1=lo * (2 * p + 1) if lo is not None else "",
+                     linear_rk3_limit=LINEAR_RK3[p],
+                     limit_over_linear=lo / LINEAR_RK3[p] if lo is not None else "",
+                     state_above=first_bad[0] if first_bad else
+                     "none up to CFL %.3g" % max(grid))
+        return rows, limit
+
+    results = ctx.pmap(pair, pairs)
+    rows = [r for rr, _ in results for r in rr]
+    limits = [l for _, l in results]
+    write_csv(os.path.join(ctx.out, name + "-stability.csv"), rows)
+    stability_chart(ctx, name, sp, choices, degrees, rows, limits)
+    return rows, limits
+
+
+COLORS = {"stable": "tab:green", "oscillatory": "tab:orange", "inadmissible": "tab:purple",
+          "blown up": "tab:red", "refused": "gray", "failed": "black"}
+MARKERS = {"stable": "o", "oscillatory": "s", "inadmissible": "D", "blown up": "x",
+           "refused": "_", "failed": "+"}
+
+
+def stability_chart(ctx, name, sp, choices, degrees, rows, limits):
+    import textwrap
+    from matplotlib.ticker import FormatStrFormatter, LogLocator
+    n = len(choices)
+    panel, top, bottom = 0.28 * len(degrees) + 0.5, 0.55, 0.8  # inches
+    height = top + bottom + n * panel
+    fig, axes = plt.subplots(n, 1, figsize=(8, height), sharex=True, squeeze=False)
+    fig.subplots_adjust(left=0.07, right=0.98, top=1 - top / height, bottom=bottom / height,
+                        hspace=0.32 / (panel - 0.32))
+    handles = {}
+    for ax, (label, _) in zip(axes[:, 0], choices):
+        for state in COLORS:
+            sel = [r for r in rows if r["state"] == state and r["choice"] == label]
+            if sel:
+                handles[state] = ax.scatter([r["cfl"] for r in sel], [r["degree"] for r in sel],
+                                            c=COLORS[state], marker=MARKERS[state], s=24)
+        for l in limits:
+            if l["choice"] == label and l["cfl_limit"] != "":
+                bounded = l["first_unstable_cfl"] != ""
+                key = "bisected limit" if bounded else "stable to the end of the grid"
+                handles[key], = ax.plot([l["cfl_limit"]] * 2, [l["degree"] - 0.38, l["degree"] + 0.38],
+                                        "k-" if bounded else "k:", lw=1.6)
+                ax.annotate(("%.3g" if bounded else ">= %.3g") % l["cfl_limit"],
+                            (l["cfl_limit"], l["degree"]), xytext=(3, 2), textcoords="offset points",
+                            fontsize=6.5)
+        ran = sorted({r["degree"] for r in rows if r["choice"] == label})
+        handles["linear RK3-DG limit"], = ax.plot([LINEAR_RK3[p] for p in ran], ran, "b|",
+                                                   ms=11, mew=1.0)
+        ax.set_yticks(degrees)
+        ax.set_yticklabels(["P%d" % p for p in degrees], fontsize=7)
+        ax.set_ylim(min(degrees) - 0.6, max(degrees) + 0.6)
+        ax.set_title(label, fontsize=8, loc="left", pad=2)
+        ax.grid(alpha=0.3, which="both")
+    ax = axes[-1, 0]
     ax.set_xscale("log")
-    ax.set_xlabel("CFL number (bar: bisected limit)")
-    ax.set_ylabel("degree")
-    ax.set_yticks(ps)
-    ax.set_title("%s: SSP-RK3 stability on %d cells" % (name, sc["stability"]["cells"]), fontsize=10)
-    ax.grid(alpha=0.3, which="both")
-    ax.legend(fontsize=7, loc="upper right")
-    fig.tight_layout()
-    for ext in ("png", "svg"):
-        fig.savefig(os.path.join(out, "%s-stability.%s" % (name, ext)), dpi=110)
-    plt.close(fig)
-    return limits
+    ax.xaxis.set_major_locator(LogLocator(subs=(1, 2, 3, 5)))
+    ax.xaxis.set_major_formatter(FormatStrFormatter("%g"))
+    ax.xaxis.set_minor_formatter(FormatStrFormatter(""))
+    ax.tick_params(axis="x", labelsize=7)
+    ax.set_xlabel("CFL number", fontsize=8)
+    fig.legend(list(handles.values()), list(handles.keys()), fontsize=7, loc="lower center",
+               ncol=len(handles), frameon=False)
+    fig.suptitle("\n".join(textwrap.wrap("%s: SSP-RK3 stability, %s" % (name, sp["case"]), 120)),
+                 fontsize=8.5, y=1 - 0.06 / height, va="top")
+    savefig(fig, ctx.out, name + "-stability")
 
 
-def write_csv(path, rows):
-    if not rows:
-        return
-    keys = []
-    for r in rows:
-        keys += [k for k in r if k not in keys]
-    with open(path, "w") as f:
-        w = csv.DictWriter(f, fieldnames=keys)
-        w.writeheader()
-        w.writerows(rows)
+def limits_table(out, limits):
+    write_csv(os.path.join(out, "stability-limits.csv"), limits)
+    with open(os.path.join(out, "stability-limits.md"), "w") as f:
+        f.write("| map | choice | degree | limit (bisected) | x (2p+1) | / linear RK3-DG limit | above the limit |\n")
+        f.write("|---|---|---|---|---|---|---|\n")
+        for l in limits:
+            lim = "%.4g" % l["cfl_limit"] if l["cfl_limit"] != "" else "none stable"
+            f.write("| %s | %s | P%d | %s | %s | %s | %s |\n" % (
+                l["map"], l["choice"], l["degree"], lim,
+                "%.3g" % l["limit_times_2p_plus_1"] if l["limit_times_2p_plus_1"] != "" else "",
+                "%.3g" % l["limit_over_linear"] if l["limit_over_linear"] != "" else "",
+                l["state_above"]))
 
 
 def cheapest(out, all_rows):
@@ -378,30 +607,48 @@ def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("build")
     ap.add_argument("out")
-    ap.add_argument("--quick", action="store_true", help="a few meshes and degrees (a smoke run)")
-    ap.add_argument("--only", default=",".join(SCENES))
-    ap.add_argument("--skip-stability", action="store_true")
+    ap.add_argument("--quick", action="store_true", help="a few meshes, degrees and choices (a smoke run)")
+    ap.add_argument("--jobs", type=int, default=2,
+                    help="granular_dg processes at a time for the stability and failure runs")
+    ap.add_argument("--only", default=",".join(SCENES),
+                    help="scenes (work precision, their stability maps and failure modes)")
     ap.add_argument("--skip-work-precision", action="store_true")
+    ap.add_argument("--skip-stability", action="store_true")
+    ap.add_argument("--skip-failures", action="store_true")
     a = ap.parse_args()
     os.makedirs(a.out, exist_ok=True)
-    t0, c0 = time.time(), os.times()
-    all_rows, limits = [], []
+    ctx = Context(os.path.abspath(a.build), os.path.abspath(a.out), a.quick, a.jobs)
     only = a.only.split(",")
-    for name in only:
-        sc = SCENES[name]
-        if not a.skip_work_precision:
-            all_rows += work_precision(a.build, a.out, name, sc, a.quick)
-        if sc["stability"] and not a.skip_stability:
-            limits += stability(a.build, a.out, name, sc, a.quick)
-    if all_rows:
-        cheapest(a.out, all_rows)
-    if limits:
-        write_csv(os.path.join(a.out, "stability-limits.csv"), limits)
+    l0, t0, c0 = load(), time.time(), os.times()
+    parts = []
+
+    def timed(label, f):
+        s = time.time()
+        r = f()
+        parts.append("%s %.0f s" % (label, time.time() - s))
+        return r
+
+    all_rows, limits = [], []
+    if not a.skip_work_precision:
+        for name in only:
+            all_rows += timed("work precision " + name, lambda: work_precision(ctx, name, SCENES[name]))
+        cheapest(ctx.out, all_rows)
+    if not a.skip_stability:
+        for name, sp in STABILITY.items():
+            if sp["scene"] in only:
+                limits += timed("stability " + name, lambda: stability(ctx, name, sp))[1]
+        if limits:
+            limits_table(ctx.out, limits)
+    if not a.skip_failures:
+        timed("failures", lambda: study_failures.run_all(ctx, only))
     c1 = os.times()
     with open(os.path.join(a.out, "runtime.txt"), "w") as f:
-        f.write("study %s (%s): wall %.1f s, CPU of the runs %.1f s, load at the end %s\n" % (
-            "quick" if a.quick else "full", ",".join(only), time.time() - t0,
-            (c1.children_user - c0.children_user) + (c1.children_system - c0.children_system), load()))
+        f.write("study %s (%s), %d jobs: wall %.1f s, CPU of the runs %.1f s, load at the start %s, "
+                "at the end %s; granular_dg runs executed %d, reused %d\n" % (
+                    "quick" if a.quick else "full", ",".join(only), a.jobs, time.time() - t0,
+                    (c1.children_user - c0.children_user) + (c1.children_system - c0.children_system),
+                    l0, load(), COUNT["executed"], COUNT["reused"]))
+        f.write("parts (wall): %s\n" % "; ".join(parts))
     print(open(os.path.join(a.out, "runtime.txt")).read())
 
 

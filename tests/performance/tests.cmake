@@ -17,3 +17,11 @@ granular_dg_test(performance/benchmark_layered_2d PRM ../prm/layered_2d.prm EXE 
 # the network's own time loop (coupling phase)
 granular_dg_test(performance/benchmark_network PRM ../prm/network_example_7_3.prm EXE ${perf_check}
   ARGS --set "Network/cells per unit length=16" ${perf_steps} COMPARE stdout LABELS performance)
+# The study driver's quick variant (contrib/study.py --quick, 2 processes at a
+# time): every chart kind written with its CSV, every stability run classified,
+# the failure modes reproduced (check_study.py prints no numbers that vary).
+granular_dg_test(performance/study_quick EXE ${CMAKE_CURRENT_SOURCE_DIR}/performance/check_study.py
+  ARGS --study=${CMAKE_SOURCE_DIR}/contrib/study.py --exe=$<TARGET_FILE:granular_dg>
+  COMPARE stdout LABELS performance)
+# (about 2 min on 2 idle cores; generous for a loaded CI machine)
+set_tests_properties(performance/study_quick PROPERTIES TIMEOUT 1200)

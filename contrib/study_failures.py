@@ -1,0 +1,461 @@
+#!/usr/bin/python3
+"""Where the methods fail (issue 7, item 2), reproduced and charted for
+contrib/study.py (which runs it: `contrib/study.py BUILD OUT`; this module
+has no command line of its own). Each mode writes OUT/failure-NAME.{png,svg,csv}
+and a few lines of numbers (read from the runs) into OUT/failures.md:
+
+  interfaces  the naive conservative-variable LLF flux at material
+              interfaces: L1 strain error and interface stress jump against
+              the resolution, naive (LLF on (eps, m)) against interface-aware
+              (impedance flux), with and without limiter; layered case (b)
+              of doc/layered.md shortened to [0, 60] and t = 50, reference P3
+              impedance at 32 cells per layer (8 with --quick);
+  friction    the explicit friction in the column (m = 1, (0, 10), t = 8,
+              tests/column/m1_stuck.prm): velocity sign flips (chatter) and the
+              strain drift of stuck material (probe z = 0.5, t = 4..8) against
+              the mesh (CFL 0.2) and against the time step (400 cells), for
+              explicit_sign, explicit_smooth (delta = 1e-2, 1e-3) and the
+              projection;
+  rk3         SSP-RK3 beyond its CFL limit per degree: the error of the
+              layered_1d stability runs against CFL / (linear limit), from
+              OUT/layered_1d-stability.csv (no runs of its own);
+  shock       the unlimited scheme at shocks: prm/elasticity_shock.prm, degrees
+              1-4, characteristic minmod (M = 0) against no limiter; the
+              strain's overshoot above and undershoot below the range
+              [0, eps_w] of the simple wave the wall drives (eps_w from the
+              wall's largest speed 0.4 and the stress law, computed here);
+  hopper      loss of hyperbolicity of steep-to-shallow transitions: 30 deg
+              cone to lower half-angles 31-35 deg (and 25 deg, steeper, the
+              wedge 30 -> 35 for contrast), P1, N = 100-800 (1600 for
+              31 deg), marched to tau = 0.3 (past the focus of the corner's shock on the axis at
+              tau ~ 0.14): completes or exit 2, tau and theta of the failure.
+"""
+import csv
+import glob
+import math
+import os
+
+import matplotlib
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402
+import numpy as np  # noqa: E402
+
+LAYERS = 60            # layers of width 1 on [0, 60]
+LAYERED_T = 50         # the front is at x ~ 45 then: the outflow end is not reached
+LAYERED_SHORT = ["Mesh/x max=%d" % LAYERS, "Time stepping/final time=%g" % LAYERED_T]
+
+
+def fmt(x, digits=3):
+    return ("%." + str(digits) + "g") % x if isinstance(x, (int, float)) and math.isfinite(x) else "-"
+
+
+def layered_reference_sets(ctx):
+    """The reference of the shortened layered case: P3, impedance flux, no
+    limiter, 32 cells per layer (8 with --quick), CFL 0.1; returns the
+    --set that makes a run compute its errors against it."""
+    per_layer = 8 if ctx.quick else 32
+    d = "layered_reference/p3-n%d" % per_layer
+    code, s, err = ctx.run(d, "prm/layered_1d.prm", LAYERED_SHORT + [
+        "Mesh/cells x=%d" % (LAYERS * per_layer), "Discretization/degree=3",
+        "Discretization/numerical flux=impedance", "Limiter/scheme=none",
+        "Time stepping/CFL number=0.1", "Output/write modes=true"])
+    if code != 0:
+        raise RuntimeError("the layered reference run failed: " + err)
+    modes = sorted(glob.glob(os.path.join(ctx.rundir(d), "modes-*.csv")))[-1]
+    return ["Exact solution/reference file=" + modes]
+
+
+def log_ticks(ax, values, axis="x"):
+    """A log axis with ticks at the values run, written as plain numbers."""
+    from matplotlib.ticker import FixedLocator, FormatStrFormatter, NullLocator
+    a = ax.xaxis if axis == "x" else ax.yaxis
+    (ax.set_xscale if axis == "x" else ax.set_yscale)("log")
+    a.set_major_locator(FixedLocator(sorted(set(values))))
+    a.set_major_formatter(FormatStrFormatter("%.3g"))
+    a.set_minor_locator(NullLocator())
+
+
+def diagnostics(s, *keys):
+    """The named entries of summary.json's diagnostics (NaN where missing)."""
+    dg = s.get("diagnostics", {})
+    return {k: dg.get(k, float("nan")) for k in keys}
+
+
+def read_table(path):
+    with open(path) as f:
+        lines = [l for l in f if not l.startswith("#")]
+    return list(csv.DictReader(lines))
+
+
+# ---------------------------------------------------------------- interfaces
+INTERFACE_CONFIGS = [("LLF on (eps, m) + componentwise", "local_lax_friedrichs", "componentwise"),
+                     ("LLF on (eps, m), no limiter", "local_lax_friedrichs", "none"),
+                     ("impedance + flux_variables", "impedance", "flux_variables"),
+                     ("impedance, no limiter", "impedance", "none")]
+
+
+def interfaces(ctx):
+    ref = layered_reference_sets(ctx)
+    degrees = [2] if ctx.quick else [1, 2]
+    per_layer = [2, 4] if ctx.quick else [2, 4, 8, 16]
+    items = [(c, p, n) for c in INTERFACE_CONFIGS for p in degrees for n in per_layer]
+
+    def one(item):
+        (label, flux, limiter), p, n = item
+        d = "interfaces/%s-%s-p%d-n%d" % (flux, limiter, p, n)
+        code, s, err = ctx.run(d, "prm/layered_1d.prm", LAYERED_SHORT + ref + [
+            "Mesh/cells x=%d" % (LAYERS * n), "Discretization/degree=%d" % p,
+            "Discretization/numerical flux=" + flux, "Limiter/scheme=" + limiter,
+            "Time stepping/CFL number=%.12g" % (0.8 / (2 * p + 1))])
+        e = s.get("errors", {}).get("component_0_l1_l2_linf", [float("nan")])[0] if code == 0 \
+            else float("nan")
+        return dict(config=label, flux=flux, limiter=limiter, degree=p, cells_per_layer=n,
+                    exit=code, l1_strain_error=e,
+                    **diagnostics(s, "interface_stress_jump_max", "interface_stress_jump_mean",
+                                  "min_strain", "max_strain"),
+                    time_loop_cpu_s=s.get("time_loop_cpu_s", float("nan")),
+                    final_time=s.get("final_time", ""), message=err[:160])
+
+    rows = ctx.pmap(one, items)
+    ctx.write_csv(os.path.join(ctx.out, "failure-interfaces.csv"), rows)
+    fig, ax = plt.subplots(1, 2, figsize=(11, 4.2))
+    colors = {c[0]: k for c, k in zip(INTERFACE_CONFIGS, ["tab:red", "tab:orange", "tab:blue", "tab:green"])}
+    marks = {1: "o", 2: "s", 3: "^"}
+    for (label, _, _) in INTERFACE_CONFIGS:
+        for p in degrees:
+            sel = [r for r in rows if r["config"] == label and r["degree"] == p]
+            ok = [r for r in sel if r["exit"] == 0]
+            ls = "--" if "LLF" in label else "-"
+            if ok:
+                ax[0].loglog([r["cells_per_layer"] for r in ok], [r["l1_strain_error"] for r in ok],
+                             ls, marker=marks[p], color=colors[label], ms=5, label="%s, P%d" % (label, p))
+                ax[1].loglog([r["cells_per_layer"] for r in ok],
+                             [r["interface_stress_jump_max"] for r in ok], ls, marker=marks[p],
+                             color=colors[label], ms=5)
+            for r in sel:
+                if r["exit"] != 0:  # stopped: mark at the top of the left panel
+                    ax[0].annotate("exit %d" % r["exit"], (r["cells_per_layer"], 1), fontsize=6,
+                                   color=colors[label], rotation=90)
+    ax[0].set_ylabel("L1 error of the strain at t = %g" % LAYERED_T)
+    ax[1].set_ylabel("largest stress jump across an interface at t = %g" % LAYERED_T)
+    for a in ax:
+        a.set_xlabel("cells per layer")
+        log_ticks(a, per_layer)
+        a.grid(alpha=0.3, which="both")
+    ax[0].legend(fontsize=6, ncol=2)
+    fig.suptitle("Naive LLF on (eps, m) against the interface-aware impedance flux at material "
+                 "interfaces (layered strip, [0, %d], t = %g)" % (LAYERS, LAYERED_T), fontsize=9)
+    ctx.save(fig, ctx.out, "failure-interfaces")
+
+    notes = ["**interfaces** (layered strip [0, %d] to t = %g, L1 strain error against P3 "
+             "impedance at %d cells per layer; CFL 0.8/(2p+1)):" % (
+                 LAYERS, LAYERED_T, 8 if ctx.quick else 32)]
+    for (label, _, _) in INTERFACE_CONFIGS:
+        for p in degrees:
+            sel = [r for r in rows if r["config"] == label and r["degree"] == p]
+            cells = ", ".join("%d: %s (jump %s)" % (r["cells_per_layer"], fmt(r["l1_strain_error"]),
+                                                    fmt(r["interface_stress_jump_max"]))
+                              if r["exit"] == 0 else "%d: exit %d at t = %s" % (
+                                  r["cells_per_layer"], r["exit"], fmt(r["final_time"], 4))
+                              for r in sel)
+            ok = [r for r in sel if r["exit"] == 0 and r["l1_strain_error"] > 0]
+            eoc = ""
+            if len(ok) >= 2:
+                eoc = "; EOC finest pair %.2f" % (math.log(ok[-2]["l1_strain_error"] / ok[-1]["l1_strain_error"]) /
+                                                  math.log(ok[-1]["cells_per_layer"] / ok[-2]["cells_per_layer"]))
+            notes.append("  - %s, P%d, cells per layer %s%s" % (label, p, cells, eoc))
+    return notes
+
+
+# ------------------------------------------------------------------ friction
+FRICTION = [("projection", ["Physics/friction=projection"]),
+            ("explicit sgn(v)", ["Physics/friction=explicit_sign"]),
+            ("explicit smooth, delta = 1e-2", ["Physics/friction=explicit_smooth", "Physics/smoothing=0.01"]),
+            ("explicit smooth, delta = 1e-3", ["Physics/friction=explicit_smooth", "Physics/smoothing=0.001"])]
+
+
+def friction(ctx):
+    cells = [100, 400] if ctx.quick else [100, 200, 400, 800]
+    cfls = [0.05, 0.2] if ctx.quick else [0.025, 0.05, 0.1, 0.2]
+    variants = FRICTION[:2] if ctx.quick else FRICTION
+    items = sorted({(v, n, 0.2) for v in range(len(variants)) for n in cells} |
+                   {(v, 400, c) for v in range(len(variants)) for c in cfls})
+
+    def one(item):
+        v, n, cfl = item
+        label, sets = variants[v]
+        d = "friction/v%d-n%d-cfl%s" % (v, n, ctx.tag(cfl))
+        code, s, err = ctx.run(d, "tests/column/m1_stuck.prm", sets + [
+            "Mesh/cells=%d" % n, "Time stepping/CFL number=%.12g" % cfl])
+        steps = s.get("n_time_steps", 0)
+        return dict(friction=label, cells=n, cfl=cfl, exit=code,
+                    dt=s.get("final_time", 8.) / steps if steps else float("nan"),
+                    **diagnostics(s, "velocity_sign_flips", "probe_strain_drift", "max_velocity"),
+                    time_loop_cpu_s=s.get("time_loop_cpu_s", float("nan")), message=err[:160])
+
+    rows = ctx.pmap(one, items)
+    ctx.write_csv(os.path.join(ctx.out, "failure-friction.csv"), rows)
+    fig, ax = plt.subplots(2, 2, figsize=(11, 7))
+    styles = ["o-", "s--", "^:", "v-."]
+    floor = {"velocity_sign_flips": 0.5, "probe_strain_drift": 1e-17}
+    for v, (label, _) in enumerate(variants):
+        for row, (key, sel) in enumerate((("cells", [r for r in rows if r["friction"] == label and r["cfl"] == 0.2]),
+                                          ("dt", [r for r in rows if r["friction"] == label and r["cells"] == 400]))):
+            sel = sorted([r for r in sel if r["exit"] == 0], key=lambda r: r[key])
+            for col, q in enumerate(("velocity_sign_flips", "probe_strain_drift")):
+                y = [max(abs(r[q]), floor[q]) for r in sel]
+                ax[row, col].loglog([r[key] for r in sel], y, styles[v], ms=5, label=label)
+    for row, (xl, key) in enumerate((("cells on (0, 10) (CFL 0.2, dt ~ dx)", "cells"),
+                                     ("time step dt (400 cells)", "dt"))):
+        ax[row, 0].set_ylabel("velocity sign flips")
+        ax[row, 1].set_ylabel("|strain drift| of the probe, t = 4..8")
+        for col in range(2):
+            ax[row, col].set_xlabel(xl)
+            log_ticks(ax[row, col], [r[key] for r in rows if r["exit"] == 0 and math.isfinite(r[key])])
+            ax[row, col].grid(alpha=0.3, which="both")
+    ax[0, 0].legend(fontsize=7)
+    fig.suptitle("Coulomb friction in the column (m = 1, t = 8): chatter (velocity sign flips) and creep "
+                 "of stuck material (strain drift)\nof the explicit treatments against the projection "
+                 "(an exact 0 is drawn at 0.5 flips and 1e-17 drift)", fontsize=9)
+    ctx.save(fig, ctx.out, "failure-friction")
+    notes = ["**friction** (column m = 1 on (0, 10), P2, characteristic limiter, t = 8; the probe "
+             "z = 0.5 is at rest from t = 3.3 in the exact solution):"]
+    for label, _ in variants:
+        sel = [r for r in rows if r["friction"] == label and r["cfl"] == 0.2]
+        notes.append("  - %s, CFL 0.2, cells %s: sign flips %s; probe drift %s" % (
+            label, "/".join(str(r["cells"]) for r in sel),
+            "/".join(fmt(r["velocity_sign_flips"], 6) if r["exit"] == 0 else "exit %d" % r["exit"] for r in sel),
+            "/".join(fmt(r["probe_strain_drift"], 2) for r in sel)))
+        sel = [r for r in rows if r["friction"] == label and r["cells"] == 400]
+        notes.append("    400 cells, dt %s: sign flips %s; probe drift %s; max v at t = 8 %s" % (
+            "/".join(fmt(r["dt"], 3) for r in sel),
+            "/".join(fmt(r["velocity_sign_flips"], 6) for r in sel),
+            "/".join(fmt(r["probe_strain_drift"], 2) for r in sel),
+            "/".join(fmt(r["max_velocity"], 2) for r in sel)))
+    return notes
+
+
+# ----------------------------------------------------------------------- rk3
+def rk3(ctx):
+    path = os.path.join(ctx.out, "layered_1d-stability.csv")
+    if not os.path.exists(path):
+        return ["**rk3**: no layered_1d-stability.csv (stability maps skipped)"]
+    rows = [r for r in read_table(path)]
+    degrees = sorted({int(r["degree"]) for r in rows})
+    fig, ax = plt.subplots(figsize=(7, 4.2))
+    out = []
+    for p in degrees:
+        sel = sorted([r for r in rows if int(r["degree"]) == p], key=lambda r: float(r["cfl"]))
+        x = [float(r["cfl"]) / ctx.linear_rk3[p] for r in sel]
+        y = [float(r["error"]) if r["error"] not in ("", "nan") else float("nan") for r in sel]
+        line, = ax.loglog(x, y, "-", lw=0.8, label="P%d" % p)
+        for xi, yi, r in zip(x, y, sel):
+            ax.scatter([xi], [yi], marker={"stable": "o", "oscillatory": "s", "blown up": "x",
+                                           "inadmissible": "D"}.get(r["state"], "+"),
+                       color=line.get_color(), s=18)
+            out.append(dict(degree=p, cfl=r["cfl"], cfl_over_linear_limit=xi, error=yi, state=r["state"]))
+    ax.axvline(1, color="k", lw=0.8, ls=":")
+    ax.set_xlabel("CFL / linear SSP-RK3 DG limit of the degree (1.256, 0.410, 0.210, 0.130, 0.0897)")
+    ax.set_ylabel("L1 error at t = 1 (smooth wave, 32 cells)")
+    log_ticks(ax, [0.25, 0.5, 0.75, 1, 1.25, 1.5, 2])
+    ax.set_title("SSP-RK3 DG beyond its linear CFL limit (smooth wave, LLF, no limiter)\n"
+                 "(o stable, s energy grew, x blown up)", fontsize=9)
+    ax.grid(alpha=0.3, which="both")
+    ax.legend(fontsize=7)
+    ctx.save(fig, ctx.out, "failure-rk3")
+    ctx.write_csv(os.path.join(ctx.out, "failure-rk3.csv"), out)
+    notes = ["**rk3** (smooth wave, 32 cells, t = 1, LLF, no limiter; from layered_1d-stability.csv):"]
+    for p in degrees:
+        sel = sorted([r for r in out if r["degree"] == p], key=lambda r: r["cfl_over_linear_limit"])
+        good = [r for r in sel if r["state"] == "stable"]
+        bad = [r for r in sel if r["state"] != "stable" and good and
+               r["cfl_over_linear_limit"] > good[-1]["cfl_over_linear_limit"]]
+        if good and bad:
+            notes.append("  - P%d: error %s at %s x the linear limit (stable), %s (%s) at %s x" % (
+                p, fmt(good[-1]["error"]), fmt(good[-1]["cfl_over_linear_limit"]), fmt(bad[0]["error"]),
+                bad[0]["state"], fmt(bad[0]["cfl_over_linear_limit"])))
+    return notes
+
+
+# --------------------------------------------------------------------- shock
+def wall_strain_bound(rho=2., K=2., beta=0.3, speed=0.4):
+    """The strain of the simple wave at the wall moving with the largest
+    speed of its data: phi(eps) = int_0^eps c de = speed, c = sqrt(sigma'/rho),
+    sigma = K eps + beta K^2 eps^2 (law (1.4)); the range [0, eps_w] holds
+    the simple wave the wall drives (prm/elasticity_shock.prm: rho = K = 2,
+    beta = 0.3, u(0, t) = -0.2 (1 + cos(...)), |u| <= 0.4)."""
+    phi = lambda e: ((K + 2 * beta * K * K * e) ** 1.5 - K ** 1.5) / (3 * beta * K * K * math.sqrt(rho))
+    lo, hi = 0., 10.
+    for _ in range(200):
+        mid = 0.5 * (lo + hi)
+        lo, hi = (mid, hi) if phi(mid) < speed else (lo, mid)
+    return lo
+
+
+def shock(ctx):
+    eps_w = wall_strain_bound()
+    degrees = [1] if ctx.quick else [1, 2, 3, 4]
+    limiters = [("characteristic minmod (M = 0)", "characteristic"), ("no limiter", "none")]
+    base, t_end = [], 240  # the case as shipped (at t = 120 no degree overshoots yet)
+    items = [(p, l) for l in limiters for p in degrees]
+
+    def one(item):
+        p, (label, lim) = item
+        cfl = 0.07 if p == 4 else 0.75 / (2 * p + 1)
+        d = "shock/%s-p%d" % (lim, p)
+        code, s, err = ctx.run(d, "prm/elasticity_shock.prm", base + [
+            "Discretization/degree=%d" % p, "Limiter/scheme=" + lim,
+            "Time stepping/CFL number=%.12g" % cfl])
+        r = dict(limiter=label, degree=p, cfl=cfl, exit=code, message=err[:160],
+                 time_loop_cpu_s=s.get("time_loop_cpu_s", float("nan")))
+        if code == 0:
+            prof = sorted(glob.glob(os.path.join(ctx.rundir(d), "profile-*.csv")))[-1]
+            t = read_table(prof)
+            strain = np.array([float(x["strain"]) for x in t])
+            r.update(final_max_strain=strain.max(), final_min_strain=strain.min(),
+                     overshoot_pct=100 * max(0., strain.max() - eps_w) / eps_w,
+                     undershoot_pct=100 * max(0., -strain.min()) / eps_w,
+                     profile=prof)
+        return r
+
+    rows = ctx.pmap(one, items)
+    ctx.write_csv(os.path.join(ctx.out, "failure-shock.csv"),
+                  [{k: v for k, v in r.items() if k != "profile"} for r in rows])
+    fig, ax = plt.subplots(1, 2, figsize=(11, 4.2))
+    for (label, lim), c in zip(limiters, ("tab:blue", "tab:red")):
+        sel = [r for r in rows if r["limiter"] == label and r["exit"] == 0]
+        ax[0].plot([r["degree"] for r in sel], [r["overshoot_pct"] for r in sel], "o-", color=c,
+                   label="overshoot above eps_w, " + label)
+        ax[0].plot([r["degree"] for r in sel], [r["undershoot_pct"] for r in sel], "s--", color=c,
+                   label="undershoot below 0, " + label)
+    top = max([r.get("overshoot_pct", 0) for r in rows] + [r.get("undershoot_pct", 0) for r in rows] + [1])
+    ax[0].set_ylim(-0.05 * top, 1.6 * top)  # room for the legend above the curves
+    ax[0].set_xticks(degrees)
+    ax[0].set_xlabel("degree")
+    ax[0].set_ylabel("%% of eps_w = %.4f at t = %g" % (eps_w, t_end))
+    ax[0].legend(fontsize=7)
+    ax[0].grid(alpha=0.3)
+    # the profiles at the shock
+    lim_rows = [r for r in rows if r["exit"] == 0 and r["limiter"] == limiters[0][0]]
+    if lim_rows:
+        t = read_table(lim_rows[-1]["profile"])
+        x = np.array([float(v["x"]) for v in t])
+        e = np.array([float(v["strain"]) for v in t])
+        xs = x[np.argmin(np.diff(e)) if len(e) > 1 else 0]  # steepest drop: the shock
+        for r in rows:
+            if r["exit"] != 0:
+                continue
+            t = read_table(r["profile"])
+            x = np.array([float(v["x"]) for v in t])
+            e = np.array([float(v["strain"]) for v in t])
+            w = (x > xs - 10) & (x < xs + 5)
+            ax[1].plot(x[w], e[w], "-" if r["limiter"] == limiters[1][0] else ":", lw=1,
+                       label="P%d, %s" % (r["degree"], "no limiter" if r["limiter"] == limiters[1][0]
+                                           else "limited"))
+        ax[1].axhline(eps_w, color="gray", lw=0.6, ls="--")
+        ax[1].axhline(0, color="gray", lw=0.6, ls="--")
+        ax[1].set_xlabel("x")
+        ax[1].set_ylabel("strain at t = %g" % t_end)
+        ax[1].legend(fontsize=6, ncol=2)
+        ax[1].grid(alpha=0.3)
+    fig.suptitle("The unlimited scheme at a shock (prm/elasticity_shock.prm, dx = 0.25): over- and "
+                 "undershoots; the characteristic minmod limiter removes them", fontsize=9)
+    ctx.save(fig, ctx.out, "failure-shock")
+    notes = ["**shock** (prm/elasticity_shock.prm, 1200 cells, t = %g; simple-wave range [0, eps_w], "
+             "eps_w = %.4f; strain at p + 1 equidistant points per cell):" % (t_end, eps_w)]
+    for r in rows:
+        if r["exit"] == 0:
+            notes.append("  - P%d, %s: strain in [%.4f, %.4f]: overshoot %.1f %%, undershoot %.1f %%" % (
+                r["degree"], r["limiter"], r["final_min_strain"], r["final_max_strain"],
+                r["overshoot_pct"], r["undershoot_pct"]))
+        else:
+            notes.append("  - P%d, %s: exit %d: %s" % (r["degree"], r["limiter"], r["exit"], r["message"]))
+    return notes
+
+
+# -------------------------------------------------------------------- hopper
+HOPPER_TAU = 0.3
+
+
+def hopper(ctx):
+    cases = [("cone", 31), ("cone", 35)] if ctx.quick else \
+        [("cone", 25), ("cone", 31), ("cone", 32), ("cone", 33), ("cone", 35), ("wedge", 35)]
+    meshes = [100, 200] if ctx.quick else [100, 200, 400, 800]
+    # N = 1600 (16x the work of N = 400) only where it changes the outcome
+    finest = [] if ctx.quick else [("cone", 31, 1600)]
+    items = [(g, a, n) for g, a in cases for n in meshes] + finest
+
+    def one(item):
+        g, a, n = item
+        d = "hopper/%s-30-%g-n%d" % (g, a, n)
+        code, s, err = ctx.run(d, "prm/hopper_cone_30_25.prm", [
+            "Hopper/geometry=" + g, "Hopper/lower half-angle=%g" % a, "Hopper/cells=%d" % n,
+            "Time stepping/final time=%g" % HOPPER_TAU, "Hopper output/step series interval=0"])
+        r = dict(geometry=g, upper=30, lower=a, cells=n, exit=code,
+                 outcome="completes" if code == 0 else ("hyperbolicity lost" if code == 2 else "exit %d" % code),
+                 tau_reached=s.get("final_time", float("nan")),
+                 **diagnostics(s, "min_hyperbolicity_margin", "tau_of_min_margin", "theta_of_min_margin_deg"),
+                 time_loop_cpu_s=s.get("time_loop_cpu_s", float("nan")), message=err[:200])
+        return r
+
+    rows = ctx.pmap(one, items)
+    ctx.write_csv(os.path.join(ctx.out, "failure-hopper.csv"), rows)
+    fig, ax = plt.subplots(1, 2, figsize=(11, 4.2))
+    labels = ["%s 30 -> %g" % c for c in cases]
+    for i, (g, a) in enumerate(cases):
+        for r in [r for r in rows if r["geometry"] == g and r["lower"] == a]:
+            ok = r["exit"] == 0
+            ax[0].scatter([r["cells"]], [i], marker="o" if ok else "x", s=40,
+                          color="tab:green" if ok else "tab:red")
+            ax[0].annotate(("m %.2g" % r["min_hyperbolicity_margin"]) if ok else ("tau %.4g" % r["tau_reached"]),
+                           (r["cells"], i), xytext=(4, 5), textcoords="offset points", fontsize=6.5)
+        fail = sorted([r for r in rows if r["geometry"] == g and r["lower"] == a and r["exit"] == 2],
+                      key=lambda r: r["cells"])
+        if fail:
+            ax[1].semilogx([r["cells"] for r in fail], [r["tau_reached"] for r in fail], "x-",
+                           label=labels[i])
+    log_ticks(ax[0], [r["cells"] for r in rows])
+    ax[0].set_yticks(range(len(cases)))
+    ax[0].set_yticklabels(labels, fontsize=7)
+    ax[0].set_ylim(-0.5, len(cases) - 0.3)
+    ax[0].set_xlabel("cells N (P1)")
+    ax[0].set_title("o completes to tau = %g (m: min hyperbolicity margin), x loses "
+                    "hyperbolicity (tau)" % HOPPER_TAU, fontsize=8)
+    ax[1].set_xlabel("cells N (P1)")
+    log_ticks(ax[1], [r["cells"] for r in rows])
+    ax[1].set_ylabel("tau at which hyperbolicity is lost")
+    ax[1].grid(alpha=0.3, which="both")
+    if ax[1].get_legend_handles_labels()[0]:
+        ax[1].legend(fontsize=7)
+    for a in ax:
+        a.grid(alpha=0.3, which="both")
+    fig.suptitle("Hopper: steep-to-shallow transitions (30 deg -> shallower lower hopper) lose "
+                 "hyperbolicity where the corner shock focuses on the axis", fontsize=9)
+    ctx.save(fig, ctx.out, "failure-hopper")
+    notes = ["**hopper** (P1, CFL 1/3, characteristic limiter, marched to tau = %g):" % HOPPER_TAU]
+    for g, a in cases:
+        sel = [r for r in rows if r["geometry"] == g and r["lower"] == a]
+        notes.append("  - %s 30 -> %g: %s" % (g, a, "; ".join(
+            "N %d %s" % (r["cells"], ("completes, min margin %s at tau %s" % (
+                fmt(r["min_hyperbolicity_margin"], 2), fmt(r["tau_of_min_margin"], 3))) if r["exit"] == 0 else
+                "fails at tau %s (theta %s deg)" % (fmt(r["tau_reached"], 4), fmt(r["theta_of_min_margin_deg"], 2)))
+            for r in sel)))
+    return notes
+
+
+MODES = [("interfaces", "layered_1d", interfaces), ("friction", "column", friction),
+         ("rk3", "layered_1d", rk3), ("shock", "layered_1d", shock), ("hopper", "hopper", hopper)]
+
+
+def run_all(ctx, scenes):
+    notes = []
+    for name, scene, f in MODES:
+        if scene in scenes:
+            print("failure mode %s" % name, flush=True)
+            notes += f(ctx) + [""]
+    with open(os.path.join(ctx.out, "failures.md"), "w") as fh:
+        fh.write("# Where the methods fail: the numbers behind failure-*.png\n\n"
+                 "Written by contrib/study.py (contrib/study_failures.py)%s.\n\n" % (
+                     " --quick" if ctx.quick else ""))
+        fh.write("\n".join(notes) + "\n")
