@@ -29,11 +29,11 @@ target errors. The stability maps (STABILITY): case, mesh, error, degrees and
 the (flux, limiter) choices.
 
 Classification of a stability run (fixed mesh, to the final time):
-  blown up      exit 2 with a non-finite state, or an error > the map's
+  blown up      exit 3 with a non-finite state, or an error > the map's
                 blow-up level (1 for the O(0.1-1) data of the exact-solution
                 cases; 100 for the layered case, whose reference strain has
                 L1 norm 11.7, the wall displacement at t = 50);
-  inadmissible  exit 2 naming another admissibility test (negative sigma',
+  inadmissible  exit 3 naming another admissibility test (negative sigma',
                 the hopper's loss of hyperbolicity);
   oscillatory   completed, but: for an energy-stable case (energy=True: the
                 linear wave with the dissipative LLF flux, no limiter) the
@@ -42,7 +42,7 @@ Classification of a stability run (fixed mesh, to the final time):
                 grid (a limiter keeps such a run bounded, the instability shows
                 as lost accuracy);
   stable        completed, otherwise;
-  refused       exit 1: the program's input check refuses the run.
+  refused       exit 2: the program's input check refuses the run.
 The limit is the largest stable CFL, bisected between the largest stable and
 the smallest non-stable grid value (relative width 5 %, 15 % with --quick).
 The grid: CFL = f/(2p+1), f in {0.5, 1, 1.5, 2, 3} (the linear wave: 0.25 to
@@ -371,7 +371,7 @@ def work_precision(ctx, name, sc):
 
     rows = ctx.pmap(one, [(p, n) for p in degrees for n in cells
                           if n <= sc.get("max_cells", {}).get(p, n)])
-    # blown up: exit 2, an error > 1, or an error above the coarser mesh's
+    # blown up: exit 3, an error > 1, or an error above the coarser mesh's
     # (an instability growing: e.g. P4 above its CFL limit)
     for p in degrees:
         previous = float("inf")
@@ -408,12 +408,12 @@ def energy_grew(d):
 
 
 def classify(code, err, e, e0, grew=None, blowup=1.0):
-    if code == 2:
+    if code == 3:  # the run failed: inadmissible or non-finite state
         low = err.lower()
         if "finite" in low or "nan" in low or "inf" in low:
             return "blown up"
         return "inadmissible"
-    if code == 1:  # bad input: the program refuses the run
+    if code == 2:  # bad input: the program refuses the run
         return "refused"
     if code != 0:
         return "failed"

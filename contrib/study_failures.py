@@ -28,7 +28,7 @@ and a few lines of numbers (read from the runs) into OUT/failures.md:
               cone to lower half-angles 31-35 deg (and 25 deg, steeper, the
               wedge 30 -> 35 for contrast), P1, N = 100-800 (1600 for
               31 deg), marched to tau = 0.3 (past the focus of the corner's shock on the axis at
-              tau ~ 0.14): completes or exit 2, tau and theta of the failure.
+              tau ~ 0.14): completes or exit 3, tau and theta of the failure.
 """
 import csv
 import glob
@@ -393,7 +393,7 @@ def hopper(ctx):
             "Hopper/geometry=" + g, "Hopper/lower half-angle=%g" % a, "Hopper/cells=%d" % n,
             "Time stepping/final time=%g" % HOPPER_TAU, "Hopper output/step series interval=0"])
         r = dict(geometry=g, upper=30, lower=a, cells=n, exit=code,
-                 outcome="completes" if code == 0 else ("hyperbolicity lost" if code == 2 else "exit %d" % code),
+                 outcome="completes" if code == 0 else ("hyperbolicity lost" if code == 3 else "exit %d" % code),
                  tau_reached=s.get("final_time", float("nan")),
                  **diagnostics(s, "min_hyperbolicity_margin", "tau_of_min_margin", "theta_of_min_margin_deg"),
                  time_loop_cpu_s=s.get("time_loop_cpu_s", float("nan")), message=err[:200])
