@@ -34,6 +34,7 @@ namespace granular_dg::dg
     /// FEEvaluation returns a scalar (not a Tensor) for one component;
     /// these adapters let the kernels treat every system as a Tensor.
     template <int n, typename T, typename Eval>
+    inline DEAL_II_ALWAYS_INLINE
     Tensor<1, n, T>
     get_state(const Eval &phi, const unsigned int q)
     {
@@ -48,6 +49,7 @@ namespace granular_dg::dg
     }
 
     template <int n, int dim, typename T, typename Eval>
+    inline DEAL_II_ALWAYS_INLINE
     void
     submit_flux(Eval &phi, const Tensor<1, n, Tensor<1, dim, T>> &F, const unsigned int q)
     {
@@ -58,6 +60,7 @@ namespace granular_dg::dg
     }
 
     template <int n, typename T, typename Eval>
+    inline DEAL_II_ALWAYS_INLINE
     void
     submit_state(Eval &phi, const Tensor<1, n, T> &U, const unsigned int q)
     {
