@@ -3,7 +3,7 @@
 // Explicit instantiation of the engine and the driver for one (dim, Physics);
 // included by one translation unit per pair, so each template is compiled once.
 // The per-step kernels of DGOperator in 2D are compiled per degree, each in
-// its own translation unit (instantiate_2d_p<K>.cc, 1.0-1.5 GB of compiler
+// its own translation unit (instantiate_2d_p<K>.cc, 1.4-1.5 GB of compiler
 // memory each): GRANULAR_DG_INSTANTIATE declares them extern, and
 // GRANULAR_DG_INSTANTIATE_KERNELS (instantiate_kernels.h) instantiates one.
 // In 1D the run-time-degree kernels are instantiated with the operator.

@@ -2,7 +2,7 @@
 
 // The per-step kernels of DGOperator<DIM, PHYSICS> compiled for one degree
 // (see instantiate.h); one translation unit per degree keeps the build
-// parallel and the compiler's memory per unit at 1.0-1.5 GB.
+// parallel and the compiler's memory per unit at 1.4-1.5 GB.
 
 #include <granular_dg/dg/dg_operator.templates.h>
 
