@@ -52,6 +52,57 @@ namespace granular_dg::dg
     return report;
   }
 
+  template <int dim, typename Physics>
+  class DGOperator;
+
+  namespace internal
+  {
+    /**
+     * The loops of DGOperator that run in every time step (the operator's
+     * cell, face and boundary kernels, the max wave speed, the admissibility
+     * scan), compiled for one polynomial degree: FEEvaluation<dim, fe_degree,
+     * fe_degree + 2>, so that the quadrature loops have fixed bounds and the
+     * sum factorisation is inlined; fe_degree = -1 takes the degree at run
+     * time. The members are defined in dg_operator.templates.h and
+     * instantiated per degree (GRANULAR_DG_INSTANTIATE_KERNELS) in their own
+     * translation units; DGOperator::dispatch() picks the one of its degree.
+     */
+    template <int dim, typename Physics, int fe_degree>
+    struct DGKernels
+    {
+      const DGOperator<dim, Physics> &op;
+
+      /// dst = R(op.time, src) (before the inverse mass matrix)
+      void
+      apply(const VectorType &src, VectorType &dst) const;
+
+      /// The largest max(lambda, min_speed) * sum_d |row_d J^{-1}| on this rank.
+      double
+      max_speed_over_h(const VectorType &solution, double min_speed) const;
+
+      /// The first inadmissible quadrature point on this rank (cells, then
+      /// points, then lanes).
+      AdmissibilityReport
+      check_admissibility(const VectorType &solution) const;
+
+      void
+      cell(const MatrixFree<dim, double>               &data,
+           VectorType                                  &dst,
+           const VectorType                            &src,
+           const std::pair<unsigned int, unsigned int> &cell_range) const;
+      void
+      face(const MatrixFree<dim, double>               &data,
+           VectorType                                  &dst,
+           const VectorType                            &src,
+           const std::pair<unsigned int, unsigned int> &face_range) const;
+      void
+      boundary_face(const MatrixFree<dim, double>               &data,
+                    VectorType                                  &dst,
+                    const VectorType                            &src,
+                    const std::pair<unsigned int, unsigned int> &face_range) const;
+    };
+  } // namespace internal
+
   /**
    * Physics-free explicit DG operator on MatrixFree (after deal.II step-67):
    * dst = M^{-1} ( (F(U), grad v) - <F* . n, v> + (S(U), v) ) for a Physics
@@ -61,8 +112,11 @@ namespace granular_dg::dg
    * gets the per-cell coefficients a (Physics::coefficients(material_id),
    * e.g. density and modulus of a layer), stored per cell batch and lane and
    * per face batch side, so lanes of one batch may hold different materials.
-   * The polynomial degree is a run-time value (FEEvaluation degree -1), so one
-   * instantiation per (dim, Physics) serves degrees 0-4.
+   * The polynomial degree is a run-time value. The loops of every time step
+   * run in internal::DGKernels: in 1D with the degree at run time
+   * (FEEvaluation degree -1, one instantiation per Physics), in 2D compiled
+   * for each degree 0-4 (max_compiled_degree); the rest (setup, projection,
+   * integrals, errors) uses the run-time degree everywhere.
    *
    * The quadrature has degree+2 Gauss points per direction (over-integration
    * of the nonlinear flux). The Legendre basis is orthonormal, so on the
@@ -76,6 +130,9 @@ namespace granular_dg::dg
     static constexpr unsigned int n_components = Physics::n_components;
     using Number = double;
     static constexpr unsigned int n_coefficients = Physics::n_coefficients;
+    /// The kernels are compiled for the degrees 0..max_compiled_degree (-1:
+    /// none, the run-time-degree kernels serve every degree).
+    static constexpr int max_compiled_degree = (dim == 1) ? -1 : 4;
     template <typename T>
     using State = Tensor<1, n_components, T>;
     template <typename T>
@@ -145,34 +202,26 @@ namespace granular_dg::dg
     }
 
   private:
+    template <int, typename, int>
+    friend struct internal::DGKernels;
     using VA = VectorizedArray<Number>;
+
+    /// f(kernels) with the kernels compiled for the degree of the element.
+    template <typename F>
+    decltype(auto)
+    dispatch(const F &f) const;
 
     /// The coefficients of the cells behind the lanes of a batch, packed.
     template <typename CellOfLane>
     Coefficients<VA>
     pack_coefficients(const unsigned int n_lanes, const CellOfLane &cell_of_lane) const;
 
-    void
-    local_apply_cell(const MatrixFree<dim, Number>               &data,
-                     VectorType                                  &dst,
-                     const VectorType                            &src,
-                     const std::pair<unsigned int, unsigned int> &cell_range) const;
-    void
-    local_apply_face(const MatrixFree<dim, Number>               &data,
-                     VectorType                                  &dst,
-                     const VectorType                            &src,
-                     const std::pair<unsigned int, unsigned int> &face_range) const;
-    void
-    local_apply_boundary_face(
-      const MatrixFree<dim, Number>               &data,
-      VectorType                                  &dst,
-      const VectorType                            &src,
-      const std::pair<unsigned int, unsigned int> &face_range) const;
     Physics                 phys;
     NumericalFlux           flux_type;
     BoundaryMap<dim>        boundary;
     MatrixFree<dim, Number> data;
     VectorType              inverse_mass_diagonal;
+    unsigned int            degree = 0;
     /// per cell batch; per face batch, interior (m) and exterior (p) side
     std::vector<Coefficients<VA>> cell_coefficients, face_coefficients_m,
       face_coefficients_p;

@@ -16,6 +16,11 @@ namespace granular_dg::dg
 {
   namespace internal
   {
+    /// Gauss points per direction of the kernels of degree fe_degree
+    /// (0: FEEvaluation takes them from the MatrixFree object).
+    template <int fe_degree>
+    constexpr int n_q_points_1d = fe_degree < 0 ? 0 : fe_degree + 2;
+
     template <int dim, typename Number>
     Point<dim>
     lane_point(const Point<dim, VectorizedArray<Number>> &p, const unsigned int v)
@@ -29,6 +34,7 @@ namespace granular_dg::dg
     /// FEEvaluation returns a scalar (not a Tensor) for one component;
     /// these adapters let the kernels treat every system as a Tensor.
     template <int n, typename T, typename Eval>
+    inline DEAL_II_ALWAYS_INLINE
     Tensor<1, n, T>
     get_state(const Eval &phi, const unsigned int q)
     {
@@ -43,6 +49,7 @@ namespace granular_dg::dg
     }
 
     template <int n, int dim, typename T, typename Eval>
+    inline DEAL_II_ALWAYS_INLINE
     void
     submit_flux(Eval &phi, const Tensor<1, n, Tensor<1, dim, T>> &F, const unsigned int q)
     {
@@ -53,6 +60,7 @@ namespace granular_dg::dg
     }
 
     template <int n, typename T, typename Eval>
+    inline DEAL_II_ALWAYS_INLINE
     void
     submit_state(Eval &phi, const Tensor<1, n, T> &U, const unsigned int q)
     {
@@ -77,7 +85,12 @@ namespace granular_dg::dg
   DGOperator<dim, Physics>::reinit(const Mapping<dim>    &mapping,
                                    const DoFHandler<dim> &dof_handler)
   {
-    const unsigned int degree = dof_handler.get_fe().degree;
+    degree = dof_handler.get_fe().degree;
+    AssertThrow(max_compiled_degree < 0 || degree <= unsigned(max_compiled_degree),
+                ExcMessage("the DG kernels in " + std::to_string(dim) +
+                           "D are compiled for degrees 0-" +
+                           std::to_string(max_compiled_degree) + ", not " +
+                           std::to_string(degree)));
     const std::vector<Quadrature<1>> quadratures = {QGauss<1>(degree + 2)};
     const AffineConstraints<double> constraints;
 
@@ -170,26 +183,71 @@ namespace granular_dg::dg
   }
 
   template <int dim, typename Physics>
+  template <typename F>
+  decltype(auto)
+  DGOperator<dim, Physics>::dispatch(const F &f) const
+  {
+    if constexpr (max_compiled_degree < 0)
+      return f(internal::DGKernels<dim, Physics, -1>{*this});
+    else
+      {
+        static_assert(max_compiled_degree == 4, "dispatch() lists the degrees 0-4");
+        switch (degree)
+          {
+            case 0:
+              return f(internal::DGKernels<dim, Physics, 0>{*this});
+            case 1:
+              return f(internal::DGKernels<dim, Physics, 1>{*this});
+            case 2:
+              return f(internal::DGKernels<dim, Physics, 2>{*this});
+            case 3:
+              return f(internal::DGKernels<dim, Physics, 3>{*this});
+            default:
+              // reinit() admits no other degree
+              return f(internal::DGKernels<dim, Physics, 4>{*this});
+          }
+      }
+  }
+
+  template <int dim, typename Physics, int fe_degree>
   void
-  DGOperator<dim, Physics>::local_apply_cell(
-    const MatrixFree<dim, Number> &,
+  internal::DGKernels<dim, Physics, fe_degree>::apply(const VectorType &src,
+                                                      VectorType       &dst) const
+  {
+    op.data.loop(&DGKernels::cell,
+                 &DGKernels::face,
+                 &DGKernels::boundary_face,
+                 this,
+                 dst,
+                 src,
+                 true,
+                 MatrixFree<dim, double>::DataAccessOnFaces::values,
+                 MatrixFree<dim, double>::DataAccessOnFaces::values);
+  }
+
+  template <int dim, typename Physics, int fe_degree>
+  void
+  internal::DGKernels<dim, Physics, fe_degree>::cell(
+    const MatrixFree<dim, double> &,
     VectorType                                  &dst,
     const VectorType                            &src,
     const std::pair<unsigned int, unsigned int> &cell_range) const
   {
-    FEEvaluation<dim, -1, 0, n_components, Number> phi(data);
+    constexpr unsigned int n_components = Physics::n_components;
+    using VA                            = VectorizedArray<double>;
+    FEEvaluation<dim, fe_degree, n_q_points_1d<fe_degree>, n_components, double> phi(op.data);
     for (unsigned int cell = cell_range.first; cell < cell_range.second; ++cell)
       {
         phi.reinit(cell);
         phi.gather_evaluate(src, EvaluationFlags::values);
-        const Coefficients<VA> &a = cell_coefficients[cell];
+        const auto &a = op.cell_coefficients[cell];
         for (unsigned int q = 0; q < phi.n_q_points; ++q)
           {
-            const auto U = internal::get_state<n_components, VA>(phi, q);
-            internal::submit_flux<n_components, dim, VA>(phi, phys.flux(U, a), q);
+            const auto U = get_state<n_components, VA>(phi, q);
+            submit_flux<n_components, dim, VA>(phi, op.phys.flux(U, a), q);
             if constexpr (Physics::has_source_term)
-              internal::submit_state<n_components, VA>(
-                phi, phys.source(U, phi.quadrature_point(q), time, a), q);
+              submit_state<n_components, VA>(
+                phi, op.phys.source(U, phi.quadrature_point(q), op.time, a), q);
           }
         if constexpr (Physics::has_source_term)
           phi.integrate_scatter(EvaluationFlags::values |
@@ -200,84 +258,166 @@ namespace granular_dg::dg
       }
   }
 
-  template <int dim, typename Physics>
+  template <int dim, typename Physics, int fe_degree>
   void
-  DGOperator<dim, Physics>::local_apply_face(
-    const MatrixFree<dim, Number> &,
+  internal::DGKernels<dim, Physics, fe_degree>::face(
+    const MatrixFree<dim, double> &,
     VectorType                                  &dst,
     const VectorType                            &src,
     const std::pair<unsigned int, unsigned int> &face_range) const
   {
-    FEFaceEvaluation<dim, -1, 0, n_components, Number> phi_m(data, true);
-    FEFaceEvaluation<dim, -1, 0, n_components, Number> phi_p(data, false);
+    constexpr unsigned int n_components = Physics::n_components;
+    using VA                            = VectorizedArray<double>;
+    using FaceEval =
+      FEFaceEvaluation<dim, fe_degree, n_q_points_1d<fe_degree>, n_components, double>;
+    FaceEval phi_m(op.data, true);
+    FaceEval phi_p(op.data, false);
     for (unsigned int face = face_range.first; face < face_range.second; ++face)
       {
         phi_m.reinit(face);
         phi_m.gather_evaluate(src, EvaluationFlags::values);
         phi_p.reinit(face);
         phi_p.gather_evaluate(src, EvaluationFlags::values);
-        const Coefficients<VA> &a_m = face_coefficients_m[face];
-        const Coefficients<VA> &a_p = face_coefficients_p[face];
+        const auto &a_m = op.face_coefficients_m[face];
+        const auto &a_p = op.face_coefficients_p[face];
         for (unsigned int q = 0; q < phi_m.n_q_points; ++q)
           {
-            const auto F = phys.numerical_flux(
-              flux_type,
-              internal::get_state<n_components, VA>(phi_m, q),
-              internal::get_state<n_components, VA>(phi_p, q),
-              phi_m.get_normal_vector(q),
-              a_m,
-              a_p);
-            internal::submit_state<n_components, VA>(phi_m, -F, q);
-            internal::submit_state<n_components, VA>(phi_p, F, q);
+            const auto F = op.phys.numerical_flux(op.flux_type,
+                                                  get_state<n_components, VA>(phi_m, q),
+                                                  get_state<n_components, VA>(phi_p, q),
+                                                  phi_m.get_normal_vector(q),
+                                                  a_m,
+                                                  a_p);
+            submit_state<n_components, VA>(phi_m, -F, q);
+            submit_state<n_components, VA>(phi_p, F, q);
           }
         phi_m.integrate_scatter(EvaluationFlags::values, dst);
         phi_p.integrate_scatter(EvaluationFlags::values, dst);
       }
   }
 
-  template <int dim, typename Physics>
+  template <int dim, typename Physics, int fe_degree>
   void
-  DGOperator<dim, Physics>::local_apply_boundary_face(
-    const MatrixFree<dim, Number> &,
+  internal::DGKernels<dim, Physics, fe_degree>::boundary_face(
+    const MatrixFree<dim, double> &,
     VectorType                                  &dst,
     const VectorType                            &src,
     const std::pair<unsigned int, unsigned int> &face_range) const
   {
-    FEFaceEvaluation<dim, -1, 0, n_components, Number> phi(data, true);
+    constexpr unsigned int n_components = Physics::n_components;
+    using VA                            = VectorizedArray<double>;
+    FEFaceEvaluation<dim, fe_degree, n_q_points_1d<fe_degree>, n_components, double> phi(op.data,
+                                                                                        true);
     for (unsigned int face = face_range.first; face < face_range.second; ++face)
       {
         phi.reinit(face);
         phi.gather_evaluate(src, EvaluationFlags::values);
-        const auto bc_it = boundary.find(data.get_boundary_id(face));
-        AssertThrow(bc_it != boundary.end(),
+        const auto bc_it = op.boundary.find(op.data.get_boundary_id(face));
+        AssertThrow(bc_it != op.boundary.end(),
                     ExcMessage("no boundary condition for boundary id " +
-                               std::to_string(data.get_boundary_id(face))));
+                               std::to_string(op.data.get_boundary_id(face))));
         const BoundaryCondition<dim> &bc = bc_it->second;
         if (bc.data)
-          bc.data->set_time(time);
-        const Coefficients<VA> &a = face_coefficients_m[face];
+          bc.data->set_time(op.time);
+        const auto &a = op.face_coefficients_m[face];
 
         for (unsigned int q = 0; q < phi.n_q_points; ++q)
           {
-            const auto U_m = internal::get_state<n_components, VA>(phi, q);
+            const auto U_m = get_state<n_components, VA>(phi, q);
             const auto n   = phi.get_normal_vector(q);
-            State<VA>  g;
+            Tensor<1, n_components, VA> g;
             if (bc.data)
               {
                 const auto x = phi.quadrature_point(q);
                 for (unsigned int v = 0; v < VA::size(); ++v)
                   {
-                    const Point<dim> p = internal::lane_point<dim>(x, v);
+                    const Point<dim> p = lane_point<dim>(x, v);
                     for (unsigned int c = 0; c < n_components; ++c)
                       g[c][v] = bc.data->value(p, c);
                   }
               }
-            const auto U_p = phys.boundary_state(bc.kind, U_m, n, g, a);
-            const auto F   = phys.numerical_flux(flux_type, U_m, U_p, n, a, a);
-            internal::submit_state<n_components, VA>(phi, -F, q);
+            const auto U_p = op.phys.boundary_state(bc.kind, U_m, n, g, a);
+            const auto F   = op.phys.numerical_flux(op.flux_type, U_m, U_p, n, a, a);
+            submit_state<n_components, VA>(phi, -F, q);
           }
         phi.integrate_scatter(EvaluationFlags::values, dst);
       }
+  }
+
+  template <int dim, typename Physics, int fe_degree>
+  double
+  internal::DGKernels<dim, Physics, fe_degree>::max_speed_over_h(const VectorType &solution,
+                                                                 const double      min_speed) const
+  {
+    constexpr unsigned int n_components = Physics::n_components;
+    using VA                            = VectorizedArray<double>;
+    double result = 0;
+    FEEvaluation<dim, fe_degree, n_q_points_1d<fe_degree>, n_components, double> phi(op.data);
+    for (unsigned int cell = 0; cell < op.data.n_cell_batches(); ++cell)
+      {
+        phi.reinit(cell);
+        phi.gather_evaluate(solution, EvaluationFlags::values);
+        // affine cells (asserted in reinit()): J^{-1} is the same at every
+        // point, and max_q (s_q * h) = (max_q s_q) * h in floating point
+        const auto inv_jac   = phi.inverse_jacobian(0);
+        VA         sum_inv_h = 0.;
+        for (int d = 0; d < dim; ++d)
+          {
+            VA row = 0.;
+            for (int e = 0; e < dim; ++e)
+              row += inv_jac[d][e] * inv_jac[d][e];
+            sum_inv_h += std::sqrt(row);
+          }
+        const auto &a     = op.cell_coefficients[cell];
+        VA          local = 0.;
+        for (unsigned int q = 0; q < phi.n_q_points; ++q)
+          local = std::max(local,
+                           std::max(op.phys.max_wave_speed(get_state<n_components, VA>(phi, q), a),
+                                    VA(min_speed)));
+        local = local * sum_inv_h;
+        for (unsigned int v = 0; v < op.data.n_active_entries_per_cell_batch(cell); ++v)
+          result = std::max(result, local[v]);
+      }
+    return result;
+  }
+
+  template <int dim, typename Physics, int fe_degree>
+  AdmissibilityReport
+  internal::DGKernels<dim, Physics, fe_degree>::check_admissibility(
+    const VectorType &solution) const
+  {
+    constexpr unsigned int n_components = Physics::n_components;
+    using VA                            = VectorizedArray<double>;
+    AdmissibilityReport report;
+    FEEvaluation<dim, fe_degree, n_q_points_1d<fe_degree>, n_components, double> phi(op.data);
+    for (unsigned int cell = 0; cell < op.data.n_cell_batches(); ++cell)
+      {
+        phi.reinit(cell);
+        phi.gather_evaluate(solution, EvaluationFlags::values);
+        const unsigned int lanes = op.data.n_active_entries_per_cell_batch(cell);
+        for (unsigned int q = 0; q < phi.n_q_points; ++q)
+          {
+            const auto U = get_state<n_components, VA>(phi, q);
+            for (unsigned int v = 0; v < lanes; ++v)
+              {
+                Tensor<1, n_components> u;
+                for (unsigned int c = 0; c < n_components; ++c)
+                  u[c] = U[c][v];
+                const auto a = op.lane_coefficients(cell, v);
+                if (!admissible(op.phys, u, a))
+                  {
+                    report.ok          = false;
+                    report.reason      = op.phys.admissibility_violation(u, a);
+                    const Point<dim> p = lane_point<dim>(phi.quadrature_point(q), v);
+                    for (int d = 0; d < dim; ++d)
+                      report.position[d] = p[d];
+                    report.state.assign(u.begin_raw(), u.end_raw());
+                    return report;
+                  }
+              }
+          }
+      }
+    return report;
   }
 
   template <int dim, typename Physics>
@@ -287,15 +427,7 @@ namespace granular_dg::dg
                                   VectorType       &dst) const
   {
     time = t;
-    data.loop(&DGOperator::local_apply_cell,
-              &DGOperator::local_apply_face,
-              &DGOperator::local_apply_boundary_face,
-              this,
-              dst,
-              src,
-              true,
-              MatrixFree<dim, Number>::DataAccessOnFaces::values,
-              MatrixFree<dim, Number>::DataAccessOnFaces::values);
+    dispatch([&](const auto &kernels) { kernels.apply(src, dst); });
     dst.scale(inverse_mass_diagonal);
   }
 
@@ -329,33 +461,8 @@ namespace granular_dg::dg
   DGOperator<dim, Physics>::max_speed_over_h(const VectorType &solution,
                                              const double      min_speed) const
   {
-    double                                         result = 0;
-    FEEvaluation<dim, -1, 0, n_components, Number> phi(data);
-    for (unsigned int cell = 0; cell < data.n_cell_batches(); ++cell)
-      {
-        phi.reinit(cell);
-        phi.gather_evaluate(solution, EvaluationFlags::values);
-        VA local = 0.;
-        for (unsigned int q = 0; q < phi.n_q_points; ++q)
-          {
-            const auto U         = internal::get_state<n_components, VA>(phi, q);
-            const auto inv_jac   = phi.inverse_jacobian(q);
-            VA         sum_inv_h = 0.;
-            for (int d = 0; d < dim; ++d)
-              {
-                VA row = 0.;
-                for (int e = 0; e < dim; ++e)
-                  row += inv_jac[d][e] * inv_jac[d][e];
-                sum_inv_h += std::sqrt(row);
-              }
-            local = std::max(local,
-                             std::max(phys.max_wave_speed(U, cell_coefficients[cell]),
-                                      VA(min_speed)) *
-                               sum_inv_h);
-          }
-        for (unsigned int v = 0; v < data.n_active_entries_per_cell_batch(cell); ++v)
-          result = std::max(result, local[v]);
-      }
+    const double result =
+      dispatch([&](const auto &kernels) { return kernels.max_speed_over_h(solution, min_speed); });
     return Utilities::MPI::max(result, solution.get_mpi_communicator());
   }
 
@@ -454,34 +561,8 @@ namespace granular_dg::dg
   AdmissibilityReport
   DGOperator<dim, Physics>::check_admissibility(const VectorType &solution) const
   {
-    AdmissibilityReport                            report;
-    FEEvaluation<dim, -1, 0, n_components, Number> phi(data);
-    for (unsigned int cell = 0; cell < data.n_cell_batches() && report.ok; ++cell)
-      {
-        phi.reinit(cell);
-        phi.gather_evaluate(solution, EvaluationFlags::values);
-        for (unsigned int q = 0; q < phi.n_q_points && report.ok; ++q)
-          {
-            const auto U = internal::get_state<n_components, VA>(phi, q);
-            for (unsigned int v = 0; v < data.n_active_entries_per_cell_batch(cell); ++v)
-              {
-                State<double> u;
-                for (unsigned int c = 0; c < n_components; ++c)
-                  u[c] = U[c][v];
-                if (!admissible(phys, u, lane_coefficients(cell, v)))
-                  {
-                    report.ok     = false;
-                    report.reason = phys.admissibility_violation(u, lane_coefficients(cell, v));
-                    const Point<dim> p =
-                      internal::lane_point<dim>(phi.quadrature_point(q), v);
-                    for (int d = 0; d < dim; ++d)
-                      report.position[d] = p[d];
-                    report.state.assign(u.begin_raw(), u.end_raw());
-                    break;
-                  }
-              }
-          }
-      }
+    AdmissibilityReport report =
+      dispatch([&](const auto &kernels) { return kernels.check_admissibility(solution); });
     // every rank learns whether someone failed and gets the report of the
     // lowest failing rank (rank 0 prints it)
     return first_failure(report, solution.get_mpi_communicator());

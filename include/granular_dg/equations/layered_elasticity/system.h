@@ -36,6 +36,7 @@
 #include <array>
 #include <cmath>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace granular_dg::elasticity
@@ -177,6 +178,18 @@ namespace granular_dg::elasticity
         return K * std::exp(K * eps);
     }
 
+    /// sigma(eps) and sigma'(eps) together: the same values as stress() and
+    /// stress_derivative(), with one exponential for law (1.5).
+    template <typename Number>
+    std::pair<Number, Number>
+    stress_and_derivative(const Number &eps, const Coefficients<Number> &a) const
+    {
+      if (law == StressLaw::quadratic)
+        return {stress(eps, a), stress_derivative(eps, a)};
+      const Number e = std::exp(a[modulus] * eps);
+      return {e - Number(1.), a[modulus] * e};
+    }
+
     /// Sigma(eps) = int_0^eps sigma: the stored energy density.
     double
     stored_energy(const double eps, const Coefficients<double> &a) const
@@ -220,7 +233,15 @@ namespace granular_dg::elasticity
     Number
     max_wave_speed(const State<Number> &U, const Coefficients<Number> &a) const
     {
-      const Number s = stress_derivative(U[0], a) / a[density];
+      return sound_speed(stress_derivative(U[0], a), a);
+    }
+
+    /// c = sqrt(max(sigma'/rho, 0)) from sigma'.
+    template <typename Number>
+    static Number
+    sound_speed(const Number &stress_slope, const Coefficients<Number> &a)
+    {
+      const Number s = stress_slope / a[density];
       return std::sqrt(std::max(s, Number(0.)));
     }
 
@@ -285,8 +306,11 @@ namespace granular_dg::elasticity
                    const Coefficients<Number>   &a_m,
                    const Coefficients<Number>   &a_p) const
     {
-      const Number Z_m = a_m[density] * max_wave_speed(U_m, a_m);
-      const Number Z_p = a_p[density] * max_wave_speed(U_p, a_p);
+      // sigma and sigma' of each side from one evaluation of the law
+      const auto [s_m, ds_m] = stress_and_derivative(U_m[0], a_m);
+      const auto [s_p, ds_p] = stress_and_derivative(U_p[0], a_p);
+      const Number Z_m       = a_m[density] * sound_speed(ds_m, a_m);
+      const Number Z_p       = a_p[density] * sound_speed(ds_p, a_p);
       Number       un_m = 0, un_p = 0;
       for (int d = 0; d < dim; ++d)
         {
@@ -295,7 +319,6 @@ namespace granular_dg::elasticity
         }
       un_m /= a_m[density];
       un_p /= a_p[density];
-      const Number s_m = stress(U_m[0], a_m), s_p = stress(U_p[0], a_p);
       const Number inv = Number(1.) / (Z_m + Z_p);
       const Number u_star = (Z_m * un_m + Z_p * un_p + s_p - s_m) * inv;
       const Number s_star = (Z_p * s_m + Z_m * s_p + Z_m * Z_p * (un_p - un_m)) * inv;
@@ -383,7 +406,8 @@ namespace granular_dg::elasticity
         if (!std::isfinite(U[c]))
           return false;
       // sigma' > 0 and a finite stress (the exponential law can overflow)
-      return stress_derivative(U[0], a) > 0. && std::isfinite(stress(U[0], a));
+      const auto [s, ds] = stress_and_derivative(U[0], a);
+      return ds > 0. && std::isfinite(s);
     }
 
     std::string
