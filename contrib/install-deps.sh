@@ -10,6 +10,7 @@ packages=(
   libboost-dev            # Boost.Math (Bessel, quadrature, roots), Boost.odeint
   openmpi-bin libopenmpi-dev
   numdiff                 # regression-test comparison
+  libdeal.ii-doc          # deal.II's examples: step-67, the throughput comparator of contrib/benchmark.py
   paraview python3-paraview xvfb  # pvpython: a real-client test of the VTU/PVD output
   python3-matplotlib python3-numpy  # figures in doc/ (run with /usr/bin/python3)
 )
