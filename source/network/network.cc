@@ -30,7 +30,7 @@ namespace granular_dg::network
   {
     for (unsigned int k = 0; k < edges.size(); ++k)
       edges[k].equ(a, x.edges[k]);
-    vertex = a * x.vertex;
+    vertex = dg::rounded_product(a, x.vertex);
   }
 
   void
@@ -38,7 +38,7 @@ namespace granular_dg::network
   {
     for (unsigned int k = 0; k < edges.size(); ++k)
       edges[k].add(a, x.edges[k]);
-    vertex += a * x.vertex;
+    vertex = vertex + dg::rounded_product(a, x.vertex);
   }
 
   void
@@ -46,7 +46,7 @@ namespace granular_dg::network
   {
     for (unsigned int k = 0; k < edges.size(); ++k)
       edges[k].sadd(s, a, x.edges[k]);
-    vertex = s * vertex + a * x.vertex;
+    vertex = dg::rounded_product(s, vertex) + dg::rounded_product(a, x.vertex);
   }
 
   // ------------------------------------------------------------- problem
@@ -128,6 +128,16 @@ namespace granular_dg::network
       integrate_moments(g, L, quad, x0, h, a, mid, result, depth + 1);
       integrate_moments(g, L, quad, x0, h, mid, b, result, depth + 1);
     }
+
+    /// whether every entry of v is finite (without a branch per entry)
+    bool
+    all_finite(const dg::VectorType &v)
+    {
+      bool ok = true;
+      for (const double x : v)
+        ok &= std::isfinite(x);
+      return ok;
+    }
   } // namespace
 
   NetworkProblem::NetworkProblem(const Graph &graph, const Discretisation &discretisation,
@@ -192,9 +202,12 @@ namespace granular_dg::network
     u.edges.resize(edge.size());
     for (unsigned int k = 0; k < edge.size(); ++k)
       edge[k]->op->initialize_vector(u.edges[k]);
-    rhs.reinit(u);
     for (unsigned int m = 0; m <= disc.degree; ++m)
-      legendre.emplace_back(m);
+      {
+        legendre.emplace_back(m);
+        at_0.push_back(legendre[m].value(0.));
+        at_1.push_back(legendre[m].value(1.));
+      }
   }
 
   NetworkProblem::~NetworkProblem() = default;
@@ -233,6 +246,18 @@ namespace granular_dg::network
     double      value  = 0;
     for (unsigned int m = 0; m <= disc.degree; ++m)
       value += s.edges[k](layout.index(c, 0, m)) * legendre[m].value(xi);
+    return value;
+  }
+
+  double
+  NetworkProblem::end_value(const unsigned int k, const unsigned int c, const bool at_end,
+                            const NetworkState &s) const
+  {
+    const auto   &layout = edge[k]->layout();
+    const double *L      = at_end ? at_1.data() : at_0.data();
+    double        value  = 0;
+    for (unsigned int m = 0; m <= disc.degree; ++m)
+      value += s.edges[k].local_element(layout.index(c, 0, m)) * L[m];
     return value;
   }
 
@@ -281,8 +306,8 @@ namespace granular_dg::network
     for (const auto &end : vertex->ends())
       {
         const auto &e = *edge[end.edge];
-        traces.push_back(end.incoming ? evaluate(end.edge, e.last(), 1., s) :
-                                        evaluate(end.edge, e.first(), 0., s));
+        traces.push_back(end.incoming ? end_value(end.edge, e.last(), true, s) :
+                                        end_value(end.edge, e.first(), false, s));
       }
     return traces;
   }
@@ -298,8 +323,8 @@ namespace granular_dg::network
           continue;
         const bool   in    = e.direction == Direction::in;
         const double x     = in ? 0. : e.length;
-        const double trace = in ? evaluate(k, edge[k]->first(), 0., s) :
-                                  evaluate(k, edge[k]->last(), 1., s);
+        const double trace = in ? end_value(k, edge[k]->first(), false, s) :
+                                  end_value(k, edge[k]->last(), true, s);
         double ghost = trace;
         if (e.far_end == FarEnd::dirichlet)
           {
@@ -312,22 +337,45 @@ namespace granular_dg::network
     return sum;
   }
 
+  double
+  NetworkProblem::couple(const double time, const NetworkState &src) const
+  {
+    const auto   traces = vertex_traces(src);
+    const double u0     = vertex->width() > 0 ? src.vertex : vertex->balance(traces, time);
+    vertex_data->u0     = u0;
+    stage_inflow.push_back(far_end_inflow(time, src));
+    return vertex->rate(traces, u0);
+  }
+
   void
   NetworkProblem::apply(const double time, const NetworkState &src, NetworkState &dst) const
   {
     std::optional<StepPhases::Scope> coupling(std::in_place, phases, StepPhases::coupling);
-    const auto traces = vertex_traces(src);
-    const double u0   = vertex->width() > 0 ? src.vertex : vertex->balance(traces, time);
-    vertex_data->u0   = u0;
+    const double                     rate = couple(time, src);
     coupling.reset();
     {
       StepPhases::Scope scope(phases, StepPhases::operator_apply);
       for (unsigned int k = 0; k < edge.size(); ++k)
         edge[k]->op->apply(time, src.edges[k], dst.edges[k]);
     }
-    coupling.emplace(phases, StepPhases::coupling);
-    dst.vertex = vertex->rate(traces, u0);
-    stage_inflow.push_back(far_end_inflow(time, src));
+    dst.vertex = rate;
+  }
+
+  void
+  NetworkProblem::apply_stage(const double time, const NetworkState &src, NetworkState &dst,
+                              const dg::StageUpdate<NetworkState> &s) const
+  {
+    std::optional<StepPhases::Scope> coupling(std::in_place, phases, StepPhases::coupling);
+    const double                     rate = couple(time, src);
+    coupling.reset();
+    {
+      StepPhases::Scope scope(phases, StepPhases::operator_apply);
+      for (unsigned int k = 0; k < edge.size(); ++k)
+        edge[k]->op->apply_stage(
+          time, src.edges[k], dst.edges[k],
+          dg::StageUpdate<>{s.old ? &s.old->edges[k] : nullptr, s.alpha, s.beta, s.gamma});
+    }
+    dst.vertex = dg::stage_value(s, src.vertex, s.old ? s.old->vertex : 0., rate);
   }
 
   std::pair<double, double>
@@ -408,19 +456,18 @@ namespace granular_dg::network
           check_maximum_principle(s, stage_time);
       }
     for (unsigned int k = 0; k < edge.size(); ++k)
-      for (const double v : s.edges[k])
-        if (!std::isfinite(v))
-          {
-            // report the first cell whose modes are not finite
-            const auto &layout = edge[k]->layout();
-            for (const unsigned int c : edge[k]->order)
-              for (unsigned int m = 0; m <= disc.degree; ++m)
-                if (!std::isfinite(s.edges[k](layout.index(c, 0, m))))
-                  throw StateFailure{stage_time, int(k),
-                                     edge[k]->left(c) + 0.5 * layout.extent(c, 0),
-                                     s.edges[k](layout.index(c, 0, 0)),
-                                     "state is not finite"};
-          }
+      if (!all_finite(s.edges[k]))
+        {
+          // report the first cell whose modes are not finite
+          const auto &layout = edge[k]->layout();
+          for (const unsigned int c : edge[k]->order)
+            for (unsigned int m = 0; m <= disc.degree; ++m)
+              if (!std::isfinite(s.edges[k](layout.index(c, 0, m))))
+                throw StateFailure{stage_time, int(k),
+                                   edge[k]->left(c) + 0.5 * layout.extent(c, 0),
+                                   s.edges[k](layout.index(c, 0, 0)),
+                                   "state is not finite"};
+        }
   }
 
   double
@@ -446,8 +493,8 @@ namespace granular_dg::network
       bounds = range_of_step(dt);
     if (n_stages() == 1)
       {
-        apply(t, u, rhs);
-        u.add(dt, rhs);
+        // u += dt R(t, u), in place
+        apply_stage(t, u, u, dg::StageUpdate<NetworkState>{nullptr, 1., 0., dt});
         post_stage(u, t + dt);
         inflow += dt * stage_inflow[0];
       }

@@ -418,7 +418,7 @@ namespace granular_dg::network
         c.add("physics", System::name);
         c.add("dim", 1ll);
         c.add("degree", discretisation.degree);
-        c.add("engine", "matrix_free");
+        c.add("engine", "line");
         c.add("n_cells", static_cast<long long>(result.n_cells));
         c.add("n_edges", static_cast<long long>(graph.edges.size()));
         c.add("limiter", static_cast<long long>(discretisation.limiter));

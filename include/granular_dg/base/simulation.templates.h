@@ -304,6 +304,17 @@ namespace granular_dg
         StepPhases::Scope scope(phases, StepPhases::operator_apply);
         op.apply(t, src, dst);
       }
+
+      /// the fused stage of an operator that has one (dg::StageUpdate)
+      template <typename Op = Operator>
+      auto
+      apply_stage(const double t, const dg::VectorType &src, dg::VectorType &dst,
+                  const dg::StageUpdate<> &s) const
+        -> decltype(std::declval<const Op &>().apply_stage(t, src, dst, s))
+      {
+        StepPhases::Scope scope(phases, StepPhases::operator_apply);
+        op.apply_stage(t, src, dst, s);
+      }
     };
   } // namespace internal
 

@@ -116,13 +116,41 @@ namespace granular_dg::dg
     }
 
   private:
+    using State = Tensor<1, n_components>;
+
+    /// What limits a cell across one of its faces: the neighbour, or at a
+    /// boundary the condition there (if the map has one) and the face centre.
+    struct Face
+    {
+      int                     neighbor = -1;
+      bool                    has_condition = false;
+      BoundaryCondition<dim>  condition;
+      Point<dim>              center;
+    };
+
+    /// The tables of apply(): faces, the first vector entry of every cell.
+    void
+    build_tables();
+
+    /// apply() with n1 = degree + 1 modes per direction
+    template <unsigned int n1>
+    unsigned int
+    apply_impl(VectorType &u, double t) const;
+
     const Physics    physics;
     LimiterType      type;
     double           M;
     BoundaryMap<dim> boundary;
     ModalLayout<dim> cells;
     std::vector<std::array<double, Physics::n_coefficients>> coefficients;
+    /// per owned cell and face (2 dim per cell)
+    std::vector<Face>        faces;
+    /// index(cell, 0, 0) of every cell (owned and ghost neighbours): the
+    /// modes of a cell are base + component * n_modes() + mode
+    std::vector<std::size_t> base;
 
     mutable std::vector<unsigned char> troubled;
+    /// flux_variables: W(average) of every cell of the current apply()
+    mutable std::vector<State> limiting_values;
   };
 } // namespace granular_dg::dg

@@ -86,6 +86,7 @@ namespace granular_dg::dg
   {
     reinit(dof_handler);
     cells.localize(dof_handler, vector.get_mpi_communicator());
+    build_tables();
   }
 
   template <int dim, typename Physics>
@@ -98,6 +99,39 @@ namespace granular_dg::dg
     coefficients.resize(cells.n_cells());
     for (unsigned int i = 0; i < cells.n_cells(); ++i)
       coefficients[i] = physics.coefficients(cells.cell(i)->material_id());
+    build_tables();
+  }
+
+  template <int dim, typename Physics>
+  void
+  ModalLimiter<dim, Physics>::build_tables()
+  {
+    const unsigned int n_modes = cells.n_modes();
+    base.resize(cells.n_cells());
+    for (unsigned int i = 0; i < cells.n_cells(); ++i)
+      {
+        base[i] = cells.index(i, 0, 0);
+        for (unsigned int c = 0; c < n_components; ++c)
+          for (unsigned int m = 0; m < n_modes; ++m)
+            AssertThrow(cells.index(i, c, m) == base[i] + c * n_modes + m,
+                        ExcMessage("ModalLimiter expects the modes of a cell component by "
+                                   "component (FESystem of FE_DGQLegendre)"));
+      }
+    faces.assign(cells.n_owned() * 2 * dim, Face());
+    for (unsigned int i = 0; i < cells.n_owned(); ++i)
+      for (unsigned int f = 0; f < 2 * dim; ++f)
+        {
+          Face &face    = faces[i * 2 * dim + f];
+          face.neighbor = cells.neighbor(i, f);
+          if (face.neighbor >= 0)
+            continue;
+          const auto bc = boundary.find(cells.boundary_id(i, f));
+          if (bc == boundary.end())
+            continue;
+          face.has_condition = true;
+          face.condition     = bc->second;
+          face.center        = cells.cell(i)->face(f)->center();
+        }
   }
 
   template <int dim, typename Physics>
@@ -107,148 +141,184 @@ namespace granular_dg::dg
     const unsigned int n_modes_1d = cells.degree() + 1;
     if (type == LimiterType::none || n_modes_1d == 1)
       return 0;
+    switch (n_modes_1d)
+      {
+        case 2:
+          return apply_impl<2>(u, t);
+        case 3:
+          return apply_impl<3>(u, t);
+        case 4:
+          return apply_impl<4>(u, t);
+        case 5:
+          return apply_impl<5>(u, t);
+        default:
+          AssertThrow(false, ExcMessage("the limiter supports degrees 0-4"));
+          return 0;
+      }
+  }
 
-    // neighbours (also ghost cells) are read from g, owned cells written in u
-    const VectorType &g     = cells.with_ghosts(u);
-    auto              value = [&](const unsigned int cell, const unsigned int c,
-                     const unsigned int mode) -> double & {
-      return u.local_element(cells.index(cell, c, mode));
-    };
-    using State = Tensor<1, n_components>;
-    auto average = [&](const unsigned int cell) {
+  template <int dim, typename Physics>
+  template <unsigned int n1>
+  unsigned int
+  ModalLimiter<dim, Physics>::apply_impl(VectorType &u, const double t) const
+  {
+    constexpr unsigned int nc      = n_components;
+    constexpr unsigned int n_modes = dim == 1 ? n1 : n1 * n1;
+    constexpr unsigned int n_faces = 2 * dim;
+    std::array<double, n1> at_0, at_1;
+    for (unsigned int k = 0; k < n1; ++k)
+      {
+        at_0[k] = cells.value_at_0(k);
+        at_1[k] = cells.value_at_1(k);
+      }
+
+    // averages (also of ghost cells) are read from g, the modes of owned
+    // cells read and written in u
+    const double *g_data = cells.with_ghosts(u).begin();
+    double       *u_data = u.begin();
+    auto          average = [&](const unsigned int cell) {
       State avg;
-      for (unsigned int c = 0; c < n_components; ++c)
-        avg[c] = g.local_element(cells.index(cell, c, 0));
+      for (unsigned int c = 0; c < nc; ++c)
+        avg[c] = g_data[base[cell] + c * n_modes];
       return avg;
     };
     for (auto &b : boundary)
       if (b.second.data)
         b.second.data->set_time(t);
+    // the data of a boundary face, at its centre
+    auto boundary_data = [&](const Face &face) {
+      State g;
+      if (face.condition.data)
+        for (unsigned int c = 0; c < nc; ++c)
+          g[c] = face.condition.data->value(face.center, c);
+      return g;
+    };
+    constexpr bool flux_variables_possible = internal::has_limiting_variables<Physics>::value;
+    if constexpr (flux_variables_possible)
+      if (type == LimiterType::flux_variables)
+        {
+          limiting_values.resize(cells.n_cells());
+          for (unsigned int i = 0; i < cells.n_cells(); ++i)
+            limiting_values[i] = physics.limiting_variables(average(i), coefficients[i]);
+        }
 
     unsigned int n_troubled = 0;
     for (unsigned int i = 0; i < cells.n_owned(); ++i)
       {
-        const State avg = average(i);
-        const auto &a   = coefficients[i];
+        const State avg  = average(i);
+        const auto &a    = coefficients[i];
+        double     *x    = u_data + base[i];
+        const Face *face = &faces[i * n_faces];
 
         // the neighbour average across face f (and the neighbour's
         // coefficients); false at an outflow boundary
-        const std::array<double, Physics::n_coefficients> *a_nb = &a;
-        auto neighbor_average = [&](const unsigned int f, State &result) {
-          const int nb = cells.neighbor(i, f);
-          a_nb         = &a;
-          if (nb >= 0)
+        auto neighbor_average = [&](const unsigned int f, State &result,
+                                    const std::array<double, Physics::n_coefficients> *&a_nb) {
+          a_nb = &a;
+          if (face[f].neighbor >= 0)
             {
-              result = average(nb);
-              a_nb   = &coefficients[nb];
+              result = average(face[f].neighbor);
+              a_nb   = &coefficients[face[f].neighbor];
               return true;
             }
-          const auto bc = boundary.find(cells.boundary_id(i, f));
-          if (bc == boundary.end() || bc->second.kind == BoundaryKind::outflow)
+          if (!face[f].has_condition || face[f].condition.kind == BoundaryKind::outflow)
             return false;
           Tensor<1, dim> n;
           n[f / 2] = (f % 2 == 0) ? -1. : 1.;
-          State g;
-          if (bc->second.data)
-            {
-              const Point<dim> x = cells.cell(i)->face(f)->center();
-              for (unsigned int c = 0; c < n_components; ++c)
-                g[c] = bc->second.data->value(x, c);
-            }
-          result = physics.boundary_state(bc->second.kind, avg, n, g, a);
+          result   = physics.boundary_state(face[f].condition.kind, avg, n, boundary_data(face[f]), a);
           return true;
         };
 
-        // per direction: jumps to the faces and limited slopes, in the
-        // variables the limiter works on (components or characteristic fields)
-        std::array<State, dim>                   new_slope;
+        // per direction: jumps to the faces and the slope, in the variables
+        // the limiter works on (components or characteristic fields), and
+        // the neighbour differences; the limited slopes only for a troubled
+        // cell
         bool                                     is_troubled = false;
-        std::array<Tensor<2, n_components>, dim> R;
+        std::array<Tensor<2, nc>, dim>           R; // characteristic: right eigenvectors
+        std::array<Tensor<2, nc>, dim>           J; // flux_variables: dW/dU
+        std::array<State, dim>                   slope, dp_used, dm_used;
+        std::array<double, dim>                  Mh2;
         for (int d = 0; d < dim; ++d)
           {
-            const unsigned int stride = cells.stride(d);
-            State              avg_m, avg_p, jump_p, jump_m, slope;
-            const bool         has_m = neighbor_average(2 * d, avg_m);
-            const auto        *a_m   = a_nb;
-            const bool         has_p = neighbor_average(2 * d + 1, avg_p);
-            const auto        *a_p   = a_nb;
-            for (unsigned int c = 0; c < n_components; ++c)
+            const unsigned int stride = d == 0 ? 1 : n1;
+            State              avg_m, avg_p, jump_p, jump_m;
+            const std::array<double, Physics::n_coefficients> *a_m, *a_p;
+            const bool has_m = neighbor_average(2 * d, avg_m, a_m);
+            const bool has_p = neighbor_average(2 * d + 1, avg_p, a_p);
+            for (unsigned int c = 0; c < nc; ++c)
               {
-                for (unsigned int k = 1; k < n_modes_1d; ++k)
+                const double *xc = x + c * n_modes;
+                for (unsigned int k = 1; k < n1; ++k)
                   {
-                    const double mode = value(i, c, k * stride);
-                    jump_p[c] += mode * cells.value_at_1(k);
-                    jump_m[c] -= mode * cells.value_at_0(k);
+                    const double mode = xc[k * stride];
+                    jump_p[c] += mode * at_1[k];
+                    jump_m[c] -= mode * at_0[k];
                   }
-                slope[c] = value(i, c, stride) * cells.value_at_1(1);
+                slope[d][c] = xc[stride] * at_1[1];
               }
             State dp = has_p ? avg_p - avg : State(), dm = has_m ? avg - avg_m : State();
             // the traces at the two faces (for limiter_boundary())
             const State face_value[2] = {avg - jump_m, avg + jump_p};
-            Tensor<2, n_components> L;
-            if constexpr (internal::has_limiting_variables<Physics>::value)
+            Tensor<2, nc> L;
+            if constexpr (flux_variables_possible)
               if (type == LimiterType::flux_variables)
                 {
-                  const State W = physics.limiting_variables(avg, a);
-                  const auto  J = physics.limiting_jacobian(avg, a);
-                  R[d]          = invert(J);
+                  const State &W = limiting_values[i];
+                  J[d]           = physics.limiting_jacobian(avg, a);
                   if (has_p)
-                    dp = physics.limiting_variables(avg_p, *a_p) - W;
+                    dp = (face[2 * d + 1].neighbor >= 0 ?
+                            limiting_values[face[2 * d + 1].neighbor] :
+                            physics.limiting_variables(avg_p, *a_p)) -
+                         W;
                   if (has_m)
-                    dm = W - physics.limiting_variables(avg_m, *a_m);
-                  jump_p = J * jump_p;
-                  jump_m = J * jump_m;
-                  slope  = J * slope;
+                    dm = W - (face[2 * d].neighbor >= 0 ? limiting_values[face[2 * d].neighbor] :
+                                                          physics.limiting_variables(avg_m, *a_m));
+                  jump_p   = J[d] * jump_p;
+                  jump_m   = J[d] * jump_m;
+                  slope[d] = J[d] * slope[d];
                 }
             if (type == LimiterType::characteristic)
               {
                 Tensor<1, dim> n;
                 n[d] = 1.;
                 physics.eigenvectors(avg, n, a, L, R[d]);
-                jump_p = L * jump_p;
-                jump_m = L * jump_m;
-                slope  = L * slope;
-                dp     = L * dp;
-                dm     = L * dm;
+                jump_p   = L * jump_p;
+                jump_m   = L * jump_m;
+                slope[d] = L * slope[d];
+                dp       = L * dp;
+                dm       = L * dm;
               }
             // per field: whether the difference across the face is known
-            std::array<bool, n_components> known_p, known_m;
+            std::array<bool, nc> known_p, known_m;
             known_p.fill(has_p);
             known_m.fill(has_m);
             if constexpr (internal::has_limiter_boundary<Physics, dim>::value)
               for (const unsigned int f : {2 * d, 2 * d + 1})
                 {
-                  const auto bc = boundary.find(cells.boundary_id(i, f));
-                  if (cells.neighbor(i, f) >= 0 || bc == boundary.end())
+                  if (face[f].neighbor >= 0 || !face[f].has_condition)
                     continue;
                   Tensor<1, dim> n;
-                  n[d] = (f % 2 == 0) ? -1. : 1.;
-                  State g;
-                  if (bc->second.data)
-                    {
-                      const Point<dim> x = cells.cell(i)->face(f)->center();
-                      for (unsigned int c = 0; c < n_components; ++c)
-                        g[c] = bc->second.data->value(x, c);
-                    }
+                  n[d]         = (f % 2 == 0) ? -1. : 1.;
                   const auto o = physics.limiter_boundary(
-                    bc->second.kind, avg, face_value[f % 2], n, g, a,
+                    face[f].condition.kind, avg, face_value[f % 2], n, boundary_data(face[f]), a,
                     type == LimiterType::characteristic ? &L : nullptr);
                   if (!o)
                     continue;
                   (f % 2 == 0 ? dm : dp) = (f % 2 == 0 ? -1. : 1.) * o->difference;
                   (f % 2 == 0 ? known_m : known_p) = o->known;
                 }
-            const double h   = cells.extent(i, d);
-            const double Mh2 = M * h * h;
-            for (unsigned int c = 0; c < n_components; ++c)
+            const double h = cells.extent(i, d);
+            Mh2[d]         = M * h * h;
+            for (unsigned int c = 0; c < nc; ++c)
               {
                 // at an outflow boundary the missing difference does not limit
-                const double dpc = known_p[c] ? dp[c] : dm[c];
-                const double dmc = known_m[c] ? dm[c] : dp[c];
-                if (internal::minmod_tvb(jump_p[c], dpc, dmc, Mh2) != jump_p[c] ||
-                    internal::minmod_tvb(jump_m[c], dpc, dmc, Mh2) != jump_m[c])
+                dp_used[d][c] = known_p[c] ? dp[c] : dm[c];
+                dm_used[d][c] = known_m[c] ? dm[c] : dp[c];
+                if (internal::minmod_tvb(jump_p[c], dp_used[d][c], dm_used[d][c], Mh2[d]) !=
+                      jump_p[c] ||
+                    internal::minmod_tvb(jump_m[c], dp_used[d][c], dm_used[d][c], Mh2[d]) !=
+                      jump_m[c])
                   is_troubled = true;
-                new_slope[d][c] = internal::minmod_tvb(slope[c], dpc, dmc, Mh2);
               }
           }
         troubled[i] = is_troubled;
@@ -257,21 +327,22 @@ namespace granular_dg::dg
         ++n_troubled;
         for (int d = 0; d < dim; ++d)
           {
-            State s = new_slope[d];
-            if (type == LimiterType::characteristic || type == LimiterType::flux_variables)
+            State s;
+            for (unsigned int c = 0; c < nc; ++c)
+              s[c] = internal::minmod_tvb(slope[d][c], dp_used[d][c], dm_used[d][c], Mh2[d]);
+            if (type == LimiterType::characteristic)
               s = R[d] * s;
-            for (unsigned int c = 0; c < n_components; ++c)
-              value(i, c, cells.stride(d)) = s[c] / cells.value_at_1(1);
+            else if (type == LimiterType::flux_variables)
+              s = invert(J[d]) * s;
+            const unsigned int stride = d == 0 ? 1 : n1;
+            for (unsigned int c = 0; c < nc; ++c)
+              x[c * n_modes + stride] = s[c] / at_1[1];
           }
-        for (unsigned int c = 0; c < n_components; ++c)
-          for (unsigned int m = 1; m < cells.n_modes(); ++m)
-            {
-              bool linear = false;
-              for (int d = 0; d < dim; ++d)
-                linear |= (m == cells.stride(d));
-              if (!linear)
-                value(i, c, m) = 0.;
-            }
+        // a troubled cell keeps its average and linear modes only
+        for (unsigned int c = 0; c < nc; ++c)
+          for (unsigned int m = 1; m < n_modes; ++m)
+            if (!(m == 1 || (dim == 2 && m == n1)))
+              x[c * n_modes + m] = 0.;
       }
     return n_troubled;
   }

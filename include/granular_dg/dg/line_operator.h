@@ -13,6 +13,7 @@
 #include <granular_dg/dg/dg_operator.h>
 #include <granular_dg/dg/modal_layout.h>
 #include <granular_dg/dg/numerical_flux.h>
+#include <granular_dg/dg/time_integrator.h>
 
 #include <algorithm>
 #include <array>
@@ -26,6 +27,34 @@ namespace granular_dg::dg
 {
   using namespace dealii;
 
+  namespace internal
+  {
+    /// What Physics::source() takes as position: Point<1>, or what the
+    /// optional Physics::source_position(x) makes of it (doc/engine.md).
+    template <typename Physics, typename = void>
+    struct SourcePosition
+    {
+      using type = Point<1>;
+      static type
+      of(const Physics &, const Point<1> &x)
+      {
+        return x;
+      }
+    };
+    template <typename Physics>
+    struct SourcePosition<
+      Physics,
+      std::void_t<decltype(std::declval<const Physics &>().source_position(Point<1>()))>>
+    {
+      using type = decltype(std::declval<const Physics &>().source_position(Point<1>()));
+      static type
+      of(const Physics &physics, const Point<1> &x)
+      {
+        return physics.source_position(x);
+      }
+    };
+  } // namespace internal
+
   /**
    * The lean 1D DG operator: the same discretisation as DGOperator<1> (modal
    * FE_DGQLegendre, p + 2 Gauss points, the same numerical fluxes, boundary
@@ -35,8 +64,10 @@ namespace granular_dg::dg
    * dominates (a cell has only (p+1) n_components unknowns), and here a cell
    * costs a few hundred flops and no indirection. Serial only (1D runs are).
    *
-   * The kernel is compiled for each degree 0-4 (the number of modes is a
-   * template parameter, so the compiler unrolls the mode loops).
+   * The kernels are compiled for each degree 0-4 (the number of modes is a
+   * template parameter, so the compiler unrolls the mode and point loops).
+   * apply_stage() does a Runge-Kutta stage (dg::StageUpdate) in the same pass
+   * over the cells, with the rounding of the vector operations it replaces.
    */
   template <typename Physics>
   class LineOperator
@@ -58,25 +89,25 @@ namespace granular_dg::dg
     void
     reinit(const Mapping<1> &, const DoFHandler<1> &dof_handler)
     {
-      require(Utilities::MPI::n_mpi_processes(MPI_COMM_WORLD) == 1, "Discretization/engine",
-              "line", "auto or matrix_free under MPI (the line engine is serial)");
+      // (unit tests may run without MPI_Init)
+      require(!Utilities::MPI::job_supports_mpi() ||
+                Utilities::MPI::n_mpi_processes(MPI_COMM_WORLD) == 1,
+              "Discretization/engine", "line",
+              "auto or matrix_free under MPI (the line engine is serial)");
       layout.reinit(dof_handler);
       n_cells = layout.n_owned();
       n_modes = layout.n_modes();
       AssertThrow(n_modes <= max_modes, ExcMessage("the line engine supports degrees 0-4"));
-      dofs_per_cell = n_components * n_modes;
       n_dofs        = dof_handler.n_dofs();
 
-      // the vector index of (cell, component, mode) must be affine, and the
-      // cells ordered left to right, so that the kernel can stream
-      comp_stride = n_components > 1 ? layout.index(0, 1, 0) - layout.index(0, 0, 0) : n_modes;
-      mode_stride = n_modes > 1 ? layout.index(0, 0, 1) - layout.index(0, 0, 0) : 1;
+      // the vector index of (cell, component, mode) is c (p+1) n + i (p+1) + k
+      // (FESystem numbers the interior DoFs component by component), and the
+      // cells are ordered left to right, so that the kernels can stream
       for (unsigned int c = 0; c < n_cells; ++c)
         {
           for (unsigned int i = 0; i < n_components; ++i)
             for (unsigned int k = 0; k < n_modes; ++k)
-              AssertThrow(layout.index(c, i, k) == c * dofs_per_cell + i * comp_stride +
-                                                     k * mode_stride,
+              AssertThrow(layout.index(c, i, k) == index(c, i, k),
                           ExcMessage("the line engine needs the cell-wise DoF numbering "
                                      "of a freshly distributed 1D DoFHandler"));
           AssertThrow(c == 0 || layout.neighbor(c, 0) == int(c) - 1,
@@ -100,24 +131,32 @@ namespace granular_dg::dg
         }
 
       const QGauss<1> q(n_modes + 1);
-      n_q      = q.size();
-      weights  = q.get_weights();
-      points.resize(n_q);
-      basis.assign(n_q * max_modes, 0.);
-      derivative.assign(n_q * max_modes, 0.);
+      n_q = q.size();
+      for (unsigned int i = 0; i < n_q; ++i)
+        {
+          points[i]  = q.point(i)[0];
+          weights[i] = q.weight(i);
+        }
       for (unsigned int k = 0; k < n_modes; ++k)
         {
           const Polynomials::Legendre L(k);
           std::vector<double>         values(2);
           for (unsigned int i = 0; i < n_q; ++i)
             {
-              points[i] = q.point(i)[0];
               L.value(points[i], values);
-              basis[i * max_modes + k]      = values[0];
-              derivative[i * max_modes + k] = values[1];
+              basis[i][k]      = values[0];
+              derivative[i][k] = values[1];
             }
           at_0[k] = layout.value_at_0(k);
           at_1[k] = layout.value_at_1(k);
+        }
+      if constexpr (Physics::has_source_term)
+        {
+          source_points.clear();
+          for (unsigned int c = 0; c < n_cells; ++c)
+            for (unsigned int q = 0; q < n_q; ++q)
+              source_points.push_back(internal::SourcePosition<Physics>::of(
+                phys, Point<1>(x_left[c] + h[c] * points[q])));
         }
     }
 
@@ -132,19 +171,32 @@ namespace granular_dg::dg
     apply(const double t, const LinearAlgebra::distributed::Vector<double> &src,
           LinearAlgebra::distributed::Vector<double> &dst) const
     {
-      switch (n_modes)
-        {
-          case 1:
-            return apply_impl<1>(t, src.begin(), dst.begin());
-          case 2:
-            return apply_impl<2>(t, src.begin(), dst.begin());
-          case 3:
-            return apply_impl<3>(t, src.begin(), dst.begin());
-          case 4:
-            return apply_impl<4>(t, src.begin(), dst.begin());
-          default:
-            return apply_impl<5>(t, src.begin(), dst.begin());
-        }
+      dispatch([&](auto nm) {
+        apply_impl<decltype(nm)::value>(t, src.begin(), [d = dst.begin()](const std::size_t i, const double rate) { d[i] = rate; });
+      });
+    }
+
+    /// One Runge-Kutta stage in one pass (dg::StageUpdate; dst may be src or
+    /// s.old): the same values as apply() and the vector operations.
+    void
+    apply_stage(const double t, const LinearAlgebra::distributed::Vector<double> &src,
+                LinearAlgebra::distributed::Vector<double>             &dst,
+                const StageUpdate<LinearAlgebra::distributed::Vector<double>> &s) const
+    {
+      const double *u   = src.begin();
+      double       *out = dst.begin();
+      dispatch([&](auto nm) {
+        constexpr unsigned int n = decltype(nm)::value;
+        if (s.old)
+          apply_impl<n>(t, u, [&, old = s.old->begin()](const std::size_t i, const double rate) {
+            out[i] = (rounded_product(s.alpha, u[i]) + rounded_product(s.beta, old[i])) +
+                     rounded_product(s.gamma, rate);
+          });
+        else
+          apply_impl<n>(t, u, [&](const std::size_t i, const double rate) {
+            out[i] = u[i] + rounded_product(s.gamma, rate);
+          });
+      });
     }
 
     /// L2 projection (the operator's quadrature, as DGOperator::project).
@@ -157,7 +209,7 @@ namespace granular_dg::dg
             {
               double sum = 0;
               for (unsigned int q = 0; q < n_q; ++q)
-                sum += weights[q] * basis[q * max_modes + k] *
+                sum += weights[q] * basis[q][k] *
                        f.value(Point<1>(x_left[c] + h[c] * points[q]), i);
               dst(index(c, i, k)) = sum;
             }
@@ -271,12 +323,12 @@ namespace granular_dg::dg
     /// state_at() with nm modes (the same sums in the same order)
     template <unsigned int nm>
     State<double>
-    state_at(const double *x, const double *B) const
+    state_at(const double *x, const std::array<double, max_modes> &B) const
     {
       State<double> U;
       for (unsigned int i = 0; i < n_components; ++i)
         for (unsigned int k = 0; k < nm; ++k)
-          U[i] += x[i * comp_stride + k * mode_stride] * B[k];
+          U[i] += x[i * nm + k] * B[k];
       return U;
     }
 
@@ -284,15 +336,20 @@ namespace granular_dg::dg
     double
     max_speed_impl(const double *src, const double min_speed) const
     {
+      // the largest speed of a cell, divided once by h: the same maximum
+      // (division by h > 0 is monotone)
       double result = 0;
       for (unsigned int c = 0; c < n_cells; ++c)
-        for (unsigned int q = 0; q < n_q; ++q)
-          result = std::max(result, std::max(phys.max_wave_speed(
-                                               state_at<nm>(src + c * dofs_per_cell,
-                                                            &basis[q * max_modes]),
-                                               coefficients[c]),
-                                             min_speed) /
-                                      h[c]);
+        {
+          double cell_max = 0;
+          for (unsigned int q = 0; q < nm + 1; ++q)
+            cell_max = std::max(cell_max,
+                                std::max(phys.max_wave_speed(
+                                           state_at<nm>(src + c * n_components * nm, basis[q]),
+                                           coefficients[c]),
+                                         min_speed));
+          result = std::max(result, cell_max / h[c]);
+        }
       return result;
     }
 
@@ -302,17 +359,22 @@ namespace granular_dg::dg
     first_inadmissible(const double *src) const
     {
       for (unsigned int c = 0; c < n_cells; ++c)
-        for (unsigned int q = 0; q < n_q; ++q)
-          if (!admissible(phys, state_at<nm>(src + c * dofs_per_cell, &basis[q * max_modes]),
-                          coefficients[c]))
+        {
+          // all points of the cell, without a branch per point
+          bool ok = true;
+          for (unsigned int q = 0; q < nm + 1; ++q)
+            ok &= admissible(phys, state_at<nm>(src + c * n_components * nm, basis[q]),
+                             coefficients[c]);
+          if (!ok)
             return c;
+        }
       return n_cells;
     }
 
     std::size_t
     index(const unsigned int c, const unsigned int i, const unsigned int k) const
     {
-      return c * dofs_per_cell + i * comp_stride + k * mode_stride;
+      return (std::size_t(c) * n_components + i) * n_modes + k;
     }
 
     State<double>
@@ -320,11 +382,9 @@ namespace granular_dg::dg
              const unsigned int q) const
     {
       State<double> U;
-      const double *x = u.begin() + c * dofs_per_cell;
-      const double *B = &basis[q * max_modes];
       for (unsigned int i = 0; i < n_components; ++i)
         for (unsigned int k = 0; k < n_modes; ++k)
-          U[i] += x[i * comp_stride + k * mode_stride] * B[k];
+          U[i] += u.local_element(index(c, i, k)) * basis[q][k];
       return U;
     }
 
@@ -355,22 +415,25 @@ namespace granular_dg::dg
       return phys.numerical_flux(flux_type, U_m, U_p, normal, a, a);
     }
 
-    template <unsigned int nm>
+    /// out(i, r) for every vector index i of the cells and its value r of
+    /// M^{-1} R(t, src); a cell's entries after all reads of the cell and of
+    /// its left neighbour's entries (so that out may overwrite src in place)
+    template <unsigned int nm, typename Out>
     void
-    apply_impl(const double t, const double *src, double *dst) const
+    apply_impl(const double t, const double *src, const Out &out) const
     {
-      constexpr unsigned int nc = n_components;
+      constexpr unsigned int nc = n_components, nq = nm + 1, dpc = nc * nm;
       Tensor<1, 1>           right;
       right[0] = 1.;
-      // traces of cell c at its left (xi = 0) and right (xi = 1) ends
+      // traces of a cell at its left (xi = 0) and right (xi = 1) ends
       auto traces = [&](const unsigned int c, State<double> &U0, State<double> &U1) {
-        const double *u = src + c * dofs_per_cell;
+        const double *u = src + c * dpc;
         for (unsigned int i = 0; i < nc; ++i)
           {
             double s0 = 0, s1 = 0;
             for (unsigned int k = 0; k < nm; ++k)
               {
-                const double x = u[i * comp_stride + k * mode_stride];
+                const double x = u[i * nm + k];
                 s0 += x * at_0[k];
                 s1 += x * at_1[k];
               }
@@ -380,13 +443,15 @@ namespace granular_dg::dg
       };
 
       // the flux through the left face of cell c (F*.n with n = +1, from
-      // cell c-1 into c), kept from one cell to the next
-      State<double> U0, U1, U1_previous, F_left;
+      // cell c-1 into c), kept from one cell to the next; first_left: the
+      // left trace of cell 0, the periodic partner of the last cell
+      State<double> U0, U1, U1_previous, F_left, first_left;
       if (periodic)
         {
           traces(n_cells - 1, U0, U1_previous);
           traces(0, U0, U1);
-          F_left = phys.numerical_flux(flux_type, U1_previous, U0, right,
+          first_left = U0;
+          F_left     = phys.numerical_flux(flux_type, U1_previous, U0, right,
                                        coefficients[n_cells - 1], coefficients[0]);
         }
       else
@@ -397,22 +462,21 @@ namespace granular_dg::dg
 
       for (unsigned int c = 0; c < n_cells; ++c)
         {
-          const double *u = src + c * dofs_per_cell;
-          double       *r = dst + c * dofs_per_cell;
-          const auto   &a = coefficients[c];
+          const double *u           = src + c * dpc;
+          const auto   &a           = coefficients[c];
           double        res[nc][nm] = {};
 
           // volume: int F(u_h) phi_k' dx + int S(u_h) phi_k dx
-          for (unsigned int q = 0; q < n_q; ++q)
+          for (unsigned int q = 0; q < nq; ++q)
             {
-              const double *B = &basis[q * max_modes];
-              const double *D = &derivative[q * max_modes];
+              const auto   &B = basis[q];
+              const auto   &D = derivative[q];
               State<double> U;
               for (unsigned int i = 0; i < nc; ++i)
                 {
                   double s = 0;
                   for (unsigned int k = 0; k < nm; ++k)
-                    s += u[i * comp_stride + k * mode_stride] * B[k];
+                    s += u[i * nm + k] * B[k];
                   U[i] = s;
                 }
               const auto F = phys.flux(U, a);
@@ -424,7 +488,7 @@ namespace granular_dg::dg
                 }
               if constexpr (Physics::has_source_term)
                 {
-                  const auto S = phys.source(U, Point<1>(x_left[c] + h[c] * points[q]), t, a);
+                  const auto S = phys.source(U, source_points[c * nq + q], t, a);
                   for (unsigned int i = 0; i < nc; ++i)
                     {
                       const double ws = h[c] * weights[q] * S[i];
@@ -443,10 +507,7 @@ namespace granular_dg::dg
               F_right = phys.numerical_flux(flux_type, U1, V0, right, a, coefficients[c + 1]);
             }
           else if (periodic)
-            {
-              traces(0, V0, V1);
-              F_right = phys.numerical_flux(flux_type, U1, V0, right, a, coefficients[0]);
-            }
+            F_right = phys.numerical_flux(flux_type, U1, first_left, right, a, coefficients[0]);
           else
             F_right = boundary_flux(*right_bc, U1, 1., x_left[c] + h[c], t, a);
 
@@ -454,24 +515,31 @@ namespace granular_dg::dg
           const double inv_h = 1. / h[c];
           for (unsigned int i = 0; i < nc; ++i)
             for (unsigned int k = 0; k < nm; ++k)
-              r[i * comp_stride + k * mode_stride] =
-                (res[i][k] - F_right[i] * at_1[k] + F_left[i] * at_0[k]) * inv_h;
+              out(c * dpc + i * nm + k,
+                  (res[i][k] - F_right[i] * at_1[k] + F_left[i] * at_0[k]) * inv_h);
           F_left = F_right;
           U0     = V0;
           U1     = V1;
         }
     }
 
-    Physics                          phys;
-    NumericalFlux                    flux_type;
-    BoundaryMap<1>                   boundary;
-    ModalLayout<1>                   layout;
-    unsigned int                     n_cells = 0, n_modes = 1, n_q = 1, dofs_per_cell = 1;
-    std::size_t                      n_dofs = 0, comp_stride = 1, mode_stride = 1;
-    bool                             periodic = false;
-    const BoundaryCondition<1>      *left_bc = nullptr, *right_bc = nullptr;
-    std::vector<double>              h, x_left, weights, points, basis, derivative;
-    std::array<double, max_modes>    at_0{}, at_1{};
+    static constexpr unsigned int max_points = max_modes + 1;
+
+    Physics                           phys;
+    NumericalFlux                     flux_type;
+    BoundaryMap<1>                    boundary;
+    ModalLayout<1>                    layout;
+    unsigned int                      n_cells = 0, n_modes = 1, n_q = 1;
+    std::size_t                       n_dofs   = 0;
+    bool                              periodic = false;
+    const BoundaryCondition<1>       *left_bc = nullptr, *right_bc = nullptr;
+    std::vector<double>               h, x_left;
+    /// Gauss points and weights on [0, 1]; basis[q][k] = L_k(x_q), derivative[q][k] = L_k'(x_q)
+    std::array<double, max_points>    weights{}, points{};
+    std::array<std::array<double, max_modes>, max_points> basis{}, derivative{};
+    std::array<double, max_modes>     at_0{}, at_1{};
     std::vector<Coefficients<double>> coefficients;
+    /// the position argument of source() at every quadrature point
+    std::vector<typename internal::SourcePosition<Physics>::type> source_points;
   };
 } // namespace granular_dg::dg

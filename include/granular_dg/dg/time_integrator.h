@@ -3,10 +3,67 @@
 #include <deal.II/lac/la_parallel_vector.h>
 
 #include <functional>
+#include <type_traits>
+#include <utility>
 
 namespace granular_dg::dg
 {
   using VectorType = dealii::LinearAlgebra::distributed::Vector<double>;
+
+  /**
+   * One fused Runge-Kutta stage: dst = (alpha src + beta old) + gamma L(t, src),
+   * or dst = src + gamma L(t, src) when old is null; dst may be src or old.
+   * An operator with apply_stage(t, src, dst, StageUpdate) computes it in its
+   * own pass over the cells, rounding as the vector operations do (see
+   * rounded_product()): bit for bit what apply() followed by Vector::equ/sadd
+   * and Vector::add gives.
+   */
+  template <typename Vector = VectorType>
+  struct StageUpdate
+  {
+    const Vector *old   = nullptr;
+    double        alpha = 1., beta = 0., gamma = 0.;
+  };
+
+  /// a * b rounded on its own: never contracted with a following sum into
+  /// an FMA (deal.II's vector operations, compiled for baseline x86-64, round
+  /// every product), so that a fused stage update adds up as they do.
+  inline double
+  rounded_product(const double a, const double b)
+  {
+    double p = a * b;
+#if defined(__GNUC__) && (defined(__x86_64__) || defined(__i386__))
+    asm("" : "+x"(p));
+#else
+    volatile double v = p;
+    p                 = v;
+#endif
+    return p;
+  }
+
+  /// The update of StageUpdate for one value (src, old: the values at the
+  /// same index; old unused without s.old).
+  template <typename Vector>
+  inline double
+  stage_value(const StageUpdate<Vector> &s, const double src, const double old, const double rate)
+  {
+    const double base = s.old ? rounded_product(s.alpha, src) + rounded_product(s.beta, old) : src;
+    return base + rounded_product(s.gamma, rate);
+  }
+
+  namespace internal
+  {
+    template <typename Operator, typename Vector, typename = void>
+    struct has_apply_stage : std::false_type
+    {};
+    template <typename Operator, typename Vector>
+    struct has_apply_stage<
+      Operator, Vector,
+      std::void_t<decltype(std::declval<const Operator &>().apply_stage(
+        0., std::declval<const Vector &>(), std::declval<Vector &>(),
+        std::declval<const StageUpdate<Vector> &>()))>> : std::true_type
+    {};
+  } // namespace internal
 
   /**
    * Third-order strong-stability-preserving Runge-Kutta method in Shu-Osher
@@ -21,6 +78,8 @@ namespace granular_dg::dg
    *
    * Vector needs reinit(const Vector &), equ(a, x), add(a, x) and
    * sadd(s, a, x) (deal.II's vectors have them; so can a network state).
+   * An operator with apply_stage() (StageUpdate) does the operator and the
+   * vector updates of a stage in one pass, with the same results.
    */
   template <typename Vector = VectorType>
   class SSPRK3
@@ -36,6 +95,24 @@ namespace granular_dg::dg
          const double         dt,
          const PostStageHook &post_stage)
     {
+      if constexpr (internal::has_apply_stage<Operator, Vector>::value)
+        {
+          if (!initialized)
+            {
+              u1.reinit(u);
+              initialized = true;
+            }
+          op.apply_stage(t, u, u1, StageUpdate<Vector>{nullptr, 1., 0., dt});
+          post_stage(u1, t + dt, dt);
+          // u1 = 1/4 u1 + 3/4 u + dt/4 L(u1), in place
+          op.apply_stage(t + dt, u1, u1, StageUpdate<Vector>{&u, 0.25, 0.75, 0.25 * dt});
+          post_stage(u1, t + 0.5 * dt, 0.25 * dt);
+          // u = 2/3 u1 + 1/3 u + 2/3 dt L(u1)
+          op.apply_stage(t + 0.5 * dt, u1, u,
+                         StageUpdate<Vector>{&u, 2. / 3., 1. / 3., 2. / 3. * dt});
+          post_stage(u, t + dt, 2. / 3. * dt);
+          return;
+        }
       if (!initialized)
         {
           k.reinit(u);

@@ -8,8 +8,8 @@
 #include <deal.II/grid/tria.h>
 
 #include <granular_dg/base/simulation.h>
-#include <granular_dg/dg/dg_operator.h>
 #include <granular_dg/dg/limiter.h>
+#include <granular_dg/dg/line_operator.h>
 #include <granular_dg/dg/time_integrator.h>
 #include <granular_dg/equations/network_scalar/system.h>
 #include <granular_dg/network/exact_solution.h>
@@ -24,14 +24,15 @@
 
 namespace granular_dg::network
 {
-  /// The DG operator of one edge. The network talks to it only through
-  /// reinit, initialize_vector, apply, max_speed_over_h and integrals, so a
-  /// leaner 1D operator with that interface can replace it here.
-  using EdgeOperator = dg::DGOperator<1, System>;
+  /// The DG operator of one edge: the lean 1D line operator (an edge is a
+  /// serial line of cells). The network talks to it only through reinit,
+  /// initialize_vector, apply, apply_stage, max_speed_over_h and integrals.
+  using EdgeOperator = dg::LineOperator<System>;
   using EdgeLimiter  = dg::ModalLimiter<1, System>;
 
   /// The state of the network: one DG vector per edge and the vertex value.
-  /// Has what dg::SSPRK3 needs of a vector.
+  /// Has what dg::SSPRK3 needs of a vector; the vertex value is combined as
+  /// deal.II combines the edge vectors (every product rounded on its own).
   struct NetworkState
   {
     std::vector<dg::VectorType> edges;
@@ -128,6 +129,12 @@ namespace granular_dg::network
     void
     apply(double t, const NetworkState &src, NetworkState &dst) const;
 
+    /// One Runge-Kutta stage (dg::StageUpdate; dst may be src or s.old):
+    /// apply() and the vector operations in one pass over every edge.
+    void
+    apply_stage(double t, const NetworkState &src, NetworkState &dst,
+                const dg::StageUpdate<NetworkState> &s) const;
+
     /// Charge the phases of the following steps to this (benchmark mode;
     /// nullptr: no timing).
     void set_phases(StepPhases *p) { phases = p; }
@@ -196,6 +203,11 @@ namespace granular_dg::network
     struct EdgeDiscretisation;
 
     double evaluate(unsigned int edge, unsigned int cell, double xi, const NetworkState &s) const;
+    /// evaluate() at xi = 0 (at_end false) or xi = 1 (at_end true)
+    double end_value(unsigned int edge, unsigned int cell, bool at_end, const NetworkState &s) const;
+    /// the vertex rate and the far-end inflow of the stage at src (the
+    /// coupling part of apply(); sets the vertex value the edges see)
+    double couple(double t, const NetworkState &src) const;
     double far_end_inflow(double time, const NetworkState &s) const;
     void   post_stage(NetworkState &s, double stage_time);
     /// Degree 0: the range [min, max] of the cell averages, the vertex value
@@ -214,8 +226,9 @@ namespace granular_dg::network
     std::shared_ptr<VertexData> vertex_data;
     NetworkState               u;
     dg::SSPRK3<NetworkState>   rk3;
-    NetworkState               rhs;
     std::vector<Polynomials::Legendre> legendre;
+    /// L_m(0) and L_m(1)
+    std::vector<double>        at_0, at_1;
     double                     t = 0., inflow = 0., h_min = 0., dt_last = 0.;
     /// the range of the current step (degree 0's maximum principle)
     std::pair<double, double>  bounds{-INFINITY, INFINITY};

@@ -306,8 +306,9 @@ namespace granular_dg::hopper
                 m.cell  = i;
                 m.theta = a + xi * (b - a);
                 legendre(degree, xi, m.L);
-                const auto T = lower->stresses(m.theta);
-                m.radial     = {{T[0], T[1]}};
+                const auto T  = lower->stresses(m.theta);
+                m.radial      = {{T[0], T[1]}};
+                m.radial_norm = std::hypot(T[0], T[1]);
                 monitor.push_back(m);
               }
           }
@@ -317,7 +318,9 @@ namespace granular_dg::hopper
       end_of_step(const dg::VectorType &U, const double tau, const double dtau,
                   const unsigned long step) override
       {
-        const auto m = monitors(U, tau);
+        // max |psi| only for a row of hopper-steps.csv (atan2 per point)
+        const bool row = p.step_interval > 0 && step % p.step_interval == 0;
+        const auto m   = monitors(U, tau, row);
         if (m.margin < min_margin)
           {
             min_margin       = m.margin;
@@ -326,7 +329,7 @@ namespace granular_dg::hopper
           }
         max_rel = std::max(max_rel, m.rel_diff);
         final_rel = m.rel_diff;
-        if (p.step_interval > 0 && step % p.step_interval == 0)
+        if (row)
           {
             if (!steps.is_open())
               steps.open(directory + "/hopper-steps.csv",
@@ -446,7 +449,14 @@ namespace granular_dg::hopper
         unsigned int          cell;
         double                theta;
         std::vector<double>   L;
-        std::array<double, 2> radial; ///< scaled radial state
+        std::array<double, 2> radial;      ///< scaled radial state
+        double                radial_norm; ///< hypot(radial[0], radial[1])
+      };
+      /// per monitor point: what the second pass of monitors() needs
+      struct MonitorScratch
+      {
+        System::State<double> u;
+        double                ratio, dx, dy, norm, estimate;
       };
       struct Monitors
       {
@@ -480,7 +490,7 @@ namespace granular_dg::hopper
         System::State<double> u;
         for (unsigned int c = 0; c < 2; ++c)
           for (unsigned int k = 0; k <= degree; ++k)
-            u[c] += U(layout->index(cell, c, k)) * L[k];
+            u[c] += U.local_element(layout->index(cell, c, k)) * L[k];
         return u;
       }
 
@@ -498,30 +508,62 @@ namespace granular_dg::hopper
         return value_at(U, cell, L);
       }
 
+      /// The monitors of a state (with_psi false: max_psi stays 0). The
+      /// largest |psi| and |U - radial| / |radial| take two passes: cheap
+      /// estimates at every point (the ratio 2 |T_rt| / (T_tt - T_rr), of
+      /// which |psi| is an increasing function, and sqrt(dx^2 + dy^2)), then
+      /// atan2() and hypot() only where the estimate is within 1e-9 of the
+      /// largest one: the same maxima as evaluating them at every point.
       Monitors
-      monitors(const dg::VectorType &U, const double tau) const
+      monitors(const dg::VectorType &U, const double tau, const bool with_psi = true) const
       {
         Monitors     m;
         const double f = radial_factor(tau);
         double       max_rr = 0, max_rt = 0, d_rr = 0, d_rt = 0;
-        for (const auto &pt : monitor)
+        double       max_ratio = 0, max_estimate = 0;
+        scratch.resize(monitor.size());
+        for (unsigned int i = 0; i < monitor.size(); ++i)
           {
+            const auto  &pt     = monitor[i];
+            auto        &sc     = scratch[i];
             const auto   u      = value_at(U, pt.cell, pt.L);
             const double margin = physics.hyperbolicity_margin(u);
+            sc.u                = u;
             if (margin < m.margin)
               {
                 m.margin       = margin;
                 m.theta_margin = pt.theta;
               }
-            if (margin > 0 && u[0] > 0)
-              m.max_psi = std::max(m.max_psi, std::abs(physics.psi(u)));
+            sc.ratio = -1.; // |psi| not wanted at this point
+            if (with_psi && margin > 0 && u[0] > 0)
+              {
+                const double x = physics.h(u[0], u[1]) - u[0], r = std::abs(2 * u[1]) / x;
+                if (x > 0 && r <= 100.)
+                  {
+                    sc.ratio  = r;
+                    max_ratio = std::max(max_ratio, r);
+                  }
+                else
+                  m.max_psi = std::max(m.max_psi, std::abs(physics.psi(u)));
+              }
             const double rr = f * pt.radial[0], rt = f * pt.radial[1];
-            const double diff = std::hypot(u[0] - rr, u[1] - rt);
-            m.rel_diff        = std::max(m.rel_diff, diff / std::hypot(rr, rt));
-            d_rr              = std::max(d_rr, std::abs(u[0] - rr));
-            d_rt              = std::max(d_rt, std::abs(u[1] - rt));
-            max_rr            = std::max(max_rr, std::abs(rr));
-            max_rt            = std::max(max_rt, std::abs(rt));
+            sc.dx           = u[0] - rr;
+            sc.dy           = u[1] - rt;
+            sc.norm         = f == 1. ? pt.radial_norm : std::hypot(rr, rt);
+            sc.estimate     = std::sqrt(sc.dx * sc.dx + sc.dy * sc.dy) / sc.norm;
+            max_estimate    = std::max(max_estimate, sc.estimate);
+            d_rr            = std::max(d_rr, std::abs(u[0] - rr));
+            d_rt            = std::max(d_rt, std::abs(u[1] - rt));
+            max_rr          = std::max(max_rr, std::abs(rr));
+            max_rt          = std::max(max_rt, std::abs(rt));
+          }
+        const double ratio_bound = max_ratio * (1 - 1e-9), estimate_bound = max_estimate * (1 - 1e-9);
+        for (const auto &sc : scratch)
+          {
+            if (sc.ratio >= 0 && sc.ratio >= ratio_bound)
+              m.max_psi = std::max(m.max_psi, std::abs(physics.psi(sc.u)));
+            if (!(sc.estimate < estimate_bound))
+              m.rel_diff = std::max(m.rel_diff, std::hypot(sc.dx, sc.dy) / sc.norm);
           }
         m.rel_rr = d_rr / max_rr;
         m.rel_rt = d_rt / max_rt;
@@ -742,6 +784,7 @@ namespace granular_dg::hopper
       const dg::ModalLayout<1>           *layout = nullptr;
       std::vector<unsigned int>           order;
       std::vector<MonitorPoint>           monitor;
+      mutable std::vector<MonitorScratch> scratch;
       CsvWriter                           steps;
       unsigned int                        n_profiles = 0;
       std::vector<Row>                    rows;

@@ -70,7 +70,8 @@ namespace granular_dg::column
     {
       for (unsigned int k = 0; k < nm; ++k)
         R[k] = 0.;
-      for (unsigned int i = 0; i < weights.size(); ++i)
+      // the operator's nm + 1 Gauss points
+      for (unsigned int i = 0; i < nm + 1; ++i)
         {
           const double *phi = &basis[i * max_modes];
           double        ui  = 0;

@@ -85,6 +85,10 @@ namespace granular_dg::column
 
     explicit System(const Parameters &p)
       : p(p)
+      , law(p.m == 1.  ? Law::linear :
+            p.m == 1.5 ? Law::three_halves :
+            p.m == 2.  ? Law::square :
+                         Law::general)
     {}
 
     const Parameters &
@@ -142,15 +146,19 @@ namespace granular_dg::column
       Number w = std::max(-u, Number(0.));
       if (p.u_star > 0)
         w = std::min(w, Number(p.u_star));
-      if (p.m == 1.)
-        // sigma = -u for u <= 0: the left derivative at u = 0 is -1
-        return compare_and_apply_mask<SIMDComparison::less_than_or_equal>(u, Number(0.), Number(1.),
-                                                                  Number(0.));
-      if (p.m == 1.5)
-        return 1.5 * std::sqrt(w);
-      if (p.m == 2.)
-        return 2. * w;
-      return p.m * std::pow(w, p.m - 1.);
+      switch (law)
+        {
+          case Law::linear:
+            // sigma = -u for u <= 0: the left derivative at u = 0 is -1
+            return compare_and_apply_mask<SIMDComparison::less_than_or_equal>(
+              u, Number(0.), Number(1.), Number(0.));
+          case Law::three_halves:
+            return 1.5 * std::sqrt(w);
+          case Law::square:
+            return 2. * w;
+          default:
+            return p.m * std::pow(w, p.m - 1.);
+        }
     }
 
     /// Sound speed c = sqrt(-sigma'(u)).
@@ -290,16 +298,30 @@ namespace granular_dg::column
     {
       // the paper's laws without pow(), which costs as much as the rest of a
       // flux evaluation
-      if (p.m == 1.)
-        return w;
-      if (p.m == 1.5)
-        return w * std::sqrt(w);
-      if (p.m == 2.)
-        return w * w;
-      // w^m with w >= 0; pow(0, m) = 0 for m > 0
-      return std::pow(w, p.m);
+      switch (law)
+        {
+          case Law::linear:
+            return w;
+          case Law::three_halves:
+            return w * std::sqrt(w);
+          case Law::square:
+            return w * w;
+          default:
+            // w^m with w >= 0; pow(0, m) = 0 for m > 0
+            return std::pow(w, p.m);
+        }
     }
 
+    /// the exponent m, decided once: the laws of the paper without pow()
+    enum class Law : unsigned char
+    {
+      linear,       ///< m = 1
+      three_halves, ///< m = 3/2
+      square,       ///< m = 2
+      general
+    };
+
     Parameters p;
+    Law        law;
   };
 } // namespace granular_dg::column

@@ -418,13 +418,40 @@ namespace granular_dg::hopper
       return b;
     }
 
+    /// What source() needs of the position theta (the optional
+    /// source_position() of doc/engine.md: the line engine evaluates it once
+    /// per quadrature point instead of once per point and stage).
+    template <typename Number>
+    struct Position
+    {
+      Number cos_theta, sin_theta;
+      Number cot_theta; ///< cone only (0 for the wedge)
+    };
+
+    template <typename Number>
+    Position<Number>
+    source_position(const Point<dim, Number> &x) const
+    {
+      const Number theta = x[0];
+      return {std::cos(theta), std::sin(theta),
+              geometry == Geometry::cone ? Number(1.) / std::tan(theta) : Number(0.)};
+    }
+
     /// G(tau, theta, U); x[0] = theta, t = tau.
     template <typename Number>
     State<Number>
     source(const State<Number> &U, const Point<dim, Number> &x, const double tau,
+           const Coefficients<Number> &coefficients) const
+    {
+      return source(U, source_position(x), tau, coefficients);
+    }
+
+    /// G at a position of source_position().
+    template <typename Number>
+    State<Number>
+    source(const State<Number> &U, const Position<Number> &x, const double tau,
            const Coefficients<Number> &) const
     {
-      const Number  theta = x[0];
       const Number &a = U[0], &b = U[1];
       const Number  T_tt  = h(a, b);
       const double  scale = variables == Variables::scaled ? 1. : 0.;
@@ -437,12 +464,12 @@ namespace granular_dg::hopper
         }
       else
         {
-          const Number cot = Number(1.) / std::tan(theta);
+          const Number &cot = x.cot_theta;
           G[0] = Number(0.5 * (3 - s)) * a + cot * b - Number(0.5 * (3 + s)) * T_tt;
           G[1] = Number(3.) * b + cot * (Number(0.5 * (1 - s)) * T_tt - Number(0.5 * (1 + s)) * a);
         }
-      G[0] += scale * a + w * std::cos(theta);
-      G[1] += scale * b - w * std::sin(theta);
+      G[0] += scale * a + w * x.cos_theta;
+      G[1] += scale * b - w * x.sin_theta;
       return G;
     }
 
@@ -456,6 +483,15 @@ namespace granular_dg::hopper
       R[1][0]           = -l[0];
       R[1][1]           = -l[1];
       L = invert(R);
+    }
+
+    /// Whether U is admissible: admissibility_violation(U, a) == "" without
+    /// building the message (the check of every stage).
+    bool
+    is_admissible(const State<double> &U, const Coefficients<double> &) const
+    {
+      return std::isfinite(U[0]) && std::isfinite(U[1]) && U[0] > 0 &&
+             hyperbolicity_margin(U) > 0;
     }
 
     /// "" when U is admissible, otherwise the failed test.
