@@ -863,7 +863,7 @@ namespace granular_dg::hopper
     }
 
     void
-    run_march(const Parameters &p, ParameterHandler &prm, const CommonParameters &common)
+    run_march(const Parameters &p, const CommonParameters &common)
     {
       require(Utilities::MPI::n_mpi_processes(MPI_COMM_WORLD) == 1, "MPI ranks",
               Utilities::MPI::n_mpi_processes(MPI_COMM_WORLD), "1 (the hopper scene is serial)");
@@ -940,7 +940,7 @@ namespace granular_dg::hopper
               "false in Hopper/mode = " + mode_names.name(p.mode) +
                 " (it has no time loop to continue)");
       if (p.mode == Mode::march)
-        run_march(p, prm, common);
+        run_march(p, common);
       else
         {
           if (p.mode == Mode::radial)
