@@ -126,7 +126,7 @@ SCENES = {
     # m = 1, t = 4 against the closed form (the frozen region included)
     "column": dict(
         prm="tests/column/m1_base.prm", mesh="Mesh/cells",
-        cells=[25, 50, 100, 200, 400, 800, 1600], quick_cells=[50, 200],
+        cells=[25, 50, 100, 200, 400, 800, 1600, 3200], quick_cells=[50, 200],
         degrees=[0, 1, 2, 3], quick_degrees=[1, 2], cfl=lambda p: 0.9 / (2 * p + 1),
         max_cells={3: 800},  # P3 is the most expensive per accuracy here
         error=sum_l1, error_name="L1 error (strain + velocity) at t = 4",
