@@ -203,11 +203,7 @@ namespace granular_dg::network
     for (unsigned int k = 0; k < edge.size(); ++k)
       edge[k]->op->initialize_vector(u.edges[k]);
     for (unsigned int m = 0; m <= disc.degree; ++m)
-      {
-        legendre.emplace_back(m);
-        at_0.push_back(legendre[m].value(0.));
-        at_1.push_back(legendre[m].value(1.));
-      }
+      legendre.emplace_back(m);
   }
 
   NetworkProblem::~NetworkProblem() = default;
@@ -253,11 +249,11 @@ namespace granular_dg::network
   NetworkProblem::end_value(const unsigned int k, const unsigned int c, const bool at_end,
                             const NetworkState &s) const
   {
-    const auto   &layout = edge[k]->layout();
-    const double *L      = at_end ? at_1.data() : at_0.data();
-    double        value  = 0;
+    const auto &layout = edge[k]->layout();
+    double      value  = 0;
     for (unsigned int m = 0; m <= disc.degree; ++m)
-      value += s.edges[k].local_element(layout.index(c, 0, m)) * L[m];
+      value += s.edges[k].local_element(layout.index(c, 0, m)) *
+               (at_end ? layout.value_at_1(m) : layout.value_at_0(m));
     return value;
   }
 

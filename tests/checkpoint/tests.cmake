@@ -12,9 +12,6 @@ function(checkpoint_test NAME PRM MODE)
   if(NOT C_TOLERANCE)
     set(C_TOLERANCE 0)
   endif()
-  if(NOT C_LABELS)
-    set(C_LABELS fast)
-  endif()
   granular_dg_test(checkpoint/${NAME} EXE ${TEST_PYTHON}
     ARGS ${resume_test} $<TARGET_FILE:granular_dg> ${CMAKE_CURRENT_SOURCE_DIR}/${PRM} ${MODE}
          ${C_OPTIONS}

@@ -46,10 +46,7 @@ namespace granular_dg::dg
         std::declval<const typename Physics::template Coefficients<double> &>(),
         static_cast<const Tensor<2, Physics::n_components> *>(nullptr)))>> : std::true_type
     {};
-  } // namespace internal
 
-  namespace internal
-  {
     /// Whether the Physics names limiting variables (flux_variables mode).
     template <typename Physics, typename = void>
     struct has_limiting_variables : std::false_type
@@ -141,20 +138,12 @@ namespace granular_dg::dg
     const unsigned int n_modes_1d = cells.degree() + 1;
     if (type == LimiterType::none || n_modes_1d == 1)
       return 0;
-    switch (n_modes_1d)
-      {
-        case 2:
-          return apply_impl<2>(u, t);
-        case 3:
-          return apply_impl<3>(u, t);
-        case 4:
-          return apply_impl<4>(u, t);
-        case 5:
-          return apply_impl<5>(u, t);
-        default:
-          AssertThrow(false, ExcMessage("the limiter supports degrees 0-4"));
-          return 0;
-      }
+    return with_n_modes(n_modes_1d, [&](auto n1) -> unsigned int {
+      if constexpr (decltype(n1)::value == 1)
+        return 0; // (returned above: a constant has no slope to limit)
+      else
+        return apply_impl<decltype(n1)::value>(u, t);
+    });
   }
 
   template <int dim, typename Physics>

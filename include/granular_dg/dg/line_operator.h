@@ -187,14 +187,14 @@ namespace granular_dg::dg
       double       *out = dst.begin();
       dispatch([&](auto nm) {
         constexpr unsigned int n = decltype(nm)::value;
+        // the branch on s.old outside the cell loop
         if (s.old)
           apply_impl<n>(t, u, [&, old = s.old->begin()](const std::size_t i, const double rate) {
-            out[i] = (rounded_product(s.alpha, u[i]) + rounded_product(s.beta, old[i])) +
-                     rounded_product(s.gamma, rate);
+            out[i] = stage_value(s.alpha, s.beta, s.gamma, u[i], old[i], rate);
           });
         else
           apply_impl<n>(t, u, [&](const std::size_t i, const double rate) {
-            out[i] = u[i] + rounded_product(s.gamma, rate);
+            out[i] = stage_value(s.gamma, u[i], rate);
           });
       });
     }
@@ -302,22 +302,10 @@ namespace granular_dg::dg
     /// f(std::integral_constant<unsigned int, n_modes>()): the mode loops of
     /// the per-point kernels unrolled for the degree at hand
     template <typename F>
-    auto
+    decltype(auto)
     dispatch(const F &f) const
     {
-      switch (n_modes)
-        {
-          case 1:
-            return f(std::integral_constant<unsigned int, 1>());
-          case 2:
-            return f(std::integral_constant<unsigned int, 2>());
-          case 3:
-            return f(std::integral_constant<unsigned int, 3>());
-          case 4:
-            return f(std::integral_constant<unsigned int, 4>());
-          default:
-            return f(std::integral_constant<unsigned int, 5>());
-        }
+      return with_n_modes(n_modes, f);
     }
 
     /// state_at() with nm modes (the same sums in the same order)

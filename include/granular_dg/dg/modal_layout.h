@@ -6,11 +6,39 @@
 #include <deal.II/lac/la_parallel_vector.h>
 
 #include <array>
+#include <type_traits>
 #include <vector>
 
 namespace granular_dg::dg
 {
   using namespace dealii;
+
+  /**
+   * f(std::integral_constant<unsigned int, n>()) for n = n_modes_1d, the
+   * number of Legendre modes per direction (degree + 1, 1-5): the cell loops
+   * compiled per degree, so that the compiler unrolls the mode and point
+   * loops (line operator, limiter, friction projection).
+   */
+  template <typename F>
+  decltype(auto)
+  with_n_modes(const unsigned int n_modes_1d, const F &f)
+  {
+    AssertThrow(n_modes_1d >= 1 && n_modes_1d <= 5,
+                ExcMessage("the DG kernels support degrees 0-4"));
+    switch (n_modes_1d)
+      {
+        case 1:
+          return f(std::integral_constant<unsigned int, 1>());
+        case 2:
+          return f(std::integral_constant<unsigned int, 2>());
+        case 3:
+          return f(std::integral_constant<unsigned int, 3>());
+        case 4:
+          return f(std::integral_constant<unsigned int, 4>());
+        default:
+          return f(std::integral_constant<unsigned int, 5>());
+      }
+  }
 
   /**
    * Where the Legendre modes of FE_DGQLegendre live in a solution vector, cell

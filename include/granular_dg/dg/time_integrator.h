@@ -41,14 +41,31 @@ namespace granular_dg::dg
     return p;
   }
 
+  /// (alpha src + beta old) + gamma rate: the update of a StageUpdate with
+  /// s.old for one value (src, old: the values at the same index).
+  inline double
+  stage_value(const double alpha, const double beta, const double gamma, const double src,
+              const double old, const double rate)
+  {
+    return (rounded_product(alpha, src) + rounded_product(beta, old)) +
+           rounded_product(gamma, rate);
+  }
+
+  /// src + gamma rate: the update of a StageUpdate without s.old.
+  inline double
+  stage_value(const double gamma, const double src, const double rate)
+  {
+    return src + rounded_product(gamma, rate);
+  }
+
   /// The update of StageUpdate for one value (src, old: the values at the
   /// same index; old unused without s.old).
   template <typename Vector>
   inline double
   stage_value(const StageUpdate<Vector> &s, const double src, const double old, const double rate)
   {
-    const double base = s.old ? rounded_product(s.alpha, src) + rounded_product(s.beta, old) : src;
-    return base + rounded_product(s.gamma, rate);
+    return s.old ? stage_value(s.alpha, s.beta, s.gamma, src, old, rate) :
+                   stage_value(s.gamma, src, rate);
   }
 
   namespace internal

@@ -227,8 +227,6 @@ namespace granular_dg::network
     NetworkState               u;
     dg::SSPRK3<NetworkState>   rk3;
     std::vector<Polynomials::Legendre> legendre;
-    /// L_m(0) and L_m(1)
-    std::vector<double>        at_0, at_1;
     double                     t = 0., inflow = 0., h_min = 0., dt_last = 0.;
     /// the range of the current step (degree 0's maximum principle)
     std::pair<double, double>  bounds{-INFINITY, INFINITY};

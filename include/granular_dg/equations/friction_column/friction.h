@@ -87,19 +87,7 @@ namespace granular_dg::column
     void
     apply(LinearAlgebra::distributed::Vector<double> &U, const double w)
     {
-      switch (n_modes)
-        {
-          case 1:
-            return apply_impl<1>(U, w);
-          case 2:
-            return apply_impl<2>(U, w);
-          case 3:
-            return apply_impl<3>(U, w);
-          case 4:
-            return apply_impl<4>(U, w);
-          default:
-            return apply_impl<5>(U, w);
-        }
+      dg::with_n_modes(n_modes, [&](auto nm) { apply_impl<decltype(nm)::value>(U, w); });
     }
 
     /// Keep the cells the friction holds at rest: a limiter that mixes
