@@ -6,10 +6,10 @@
 #include <deal.II/base/mpi.h>
 #include <deal.II/base/revision.h>
 
+#include <granular_dg/base/checkpoint.h>
 #include <granular_dg/base/errors.h>
 #include <granular_dg/base/parameters.h>
-#include <granular_dg/base/simulation.h>
-#include <granular_dg/scenes/scenes.h>
+#include <granular_dg/base/scene.h>
 #include <granular_dg/version.h>
 
 #include <filesystem>
@@ -19,44 +19,21 @@
 
 using namespace granular_dg;
 
-namespace granular_dg
-{
-  const std::vector<Scene> &
-  all_scenes()
-  {
-    static const std::vector<Scene> scenes{elasticity::scene(), column::scene(), network::scene(),
-                                           hopper::scene()};
-    return scenes;
-  }
-} // namespace granular_dg
-
 namespace
 {
-  std::string
-  scene_list()
-  {
-    std::string s;
-    for (const auto &scene : all_scenes())
-      s += (s.empty() ? "" : "|") + scene.name;
-    return s;
-  }
-
   const Scene &
   find_scene(const std::string &name, const std::string &where)
   {
-    for (const auto &scene : all_scenes())
-      if (scene.name == name)
-        return scene;
-    require(false, where, name, "one of " + scene_list());
-    return all_scenes().front();
+    const Scene *scene = find_registered_scene(name);
+    require(scene != nullptr, where, name, "one of " + scene_names());
+    return *scene;
   }
 
   void
   declare_all(ParameterHandler &prm, const Scene &scene)
   {
-    prm.declare_entry("scene", scene.name, Patterns::Selection(scene_list()),
-                      "The scene to run: " + scene_list() + ".");
-    CommonParameters::declare(prm, scene.fluxes);
+    prm.declare_entry("scene", scene.name, Patterns::Selection(scene_names()),
+                      "The scene to run: " + scene_names() + ".");
     scene.declare(prm);
   }
 
@@ -101,7 +78,7 @@ namespace
     if (name.empty())
       throw InputError("parameter file '" + filename +
                        "' does not say which scene to run: add 'set scene = NAME' "
-                       "with NAME one of " + scene_list());
+                       "with NAME one of " + scene_names());
     return name;
   }
 
@@ -120,9 +97,10 @@ namespace
          "                                                         checkpoint (Checkpoint/ parameters)\n"
          "  granular_dg --print-parameters SCENE                   all parameters of a scene,\n"
          "                                                         with defaults and documentation\n"
+         "  granular_dg --list-scenes                              the scenes, one per line\n"
          "  granular_dg --version | --help\n\n"
          "Scenes:\n";
-    for (const auto &scene : all_scenes())
+    for (const auto &scene : registered_scenes())
       std::cout << "  " << scene.name << ": " << scene.description << '\n';
     std::cout
       << "\nA run writes to Output/directory: solution.pvd + solution-NNNN.vtu (ParaView),\n"
@@ -154,6 +132,13 @@ main(int argc, char **argv)
                 print_help();
               return 0;
             }
+          else if (a == "--list-scenes")
+            {
+              if (root)
+                for (const auto &scene : registered_scenes())
+                  std::cout << scene.name << '\n';
+              return 0;
+            }
           else if (a == "--version")
             {
               if (root)
@@ -166,7 +151,7 @@ main(int argc, char **argv)
             {
               const std::string name = i + 1 < args.size() ? args[i + 1] : "";
               if (name.empty())
-                throw InputError("--print-parameters needs a scene: one of " + scene_list());
+                throw InputError("--print-parameters needs a scene: one of " + scene_names());
               ParameterHandler prm;
               declare_all(prm, find_scene(name, "--print-parameters"));
               prm.set("scene", name);

@@ -62,6 +62,8 @@ def main():
     p.add_argument('--expect-files', default='',
                    help='comma-separated files the (failed) run must have written, '
                         'relative to the work directory')
+    p.add_argument('--absent-files', default='',
+                   help='comma-separated files the run must not have written')
     p.add_argument('--keep-output', action='store_true',
                    help='do not redirect the output directory (bad-input tests)')
     a = p.parse_args()
@@ -90,6 +92,11 @@ def main():
     sys.stderr.write(proc.stderr)
     if proc.returncode != a.expect_exit:
         sys.exit(f'run_test: exit code {proc.returncode}, expected {a.expect_exit}')
+
+    present = [f for f in a.absent_files.split(',')
+               if f and os.path.exists(os.path.join(a.workdir, f))]
+    if present:
+        sys.exit(f'run_test: the run wrote {present}, which it must not')
 
     result_path = os.path.join(a.workdir, a.name + '.result')
     if a.compare == 'stderr':
@@ -126,13 +133,26 @@ def main():
     with open(result_path, 'w') as f:
         f.write(text)
 
+    # @SCENES@ in the expected output stands for the program's list of
+    # scenes (granular_dg --list-scenes, joined by '|'): a new scene folder
+    # changes no stored output
+    expected = a.expected
+    with open(a.expected) as f:
+        expected_text = f.read()
+    if '@SCENES@' in expected_text:
+        scenes = subprocess.run([a.exe, '--list-scenes'], capture_output=True, text=True,
+                                check=True).stdout.split()
+        expected = os.path.join(a.workdir, a.name + '.expected')
+        with open(expected, 'w') as f:
+            f.write(expected_text.replace('@SCENES@', '|'.join(scenes)))
+
     # fields are split at white space, commas and '=' (CSV, JSON-ish lines)
-    nd = ['numdiff', '-q', '-s', ' \t\n,='] + [x for x in a.numdiff.split('|') if x] + [result_path, a.expected]
+    nd = ['numdiff', '-q', '-s', ' \t\n,='] + [x for x in a.numdiff.split('|') if x] + [result_path, expected]
     print('run_test: ' + ' '.join(nd), flush=True)
     diff = subprocess.run(nd, capture_output=True, text=True)
     if diff.returncode != 0:
         print(subprocess.run(['numdiff'] + nd[2:], capture_output=True, text=True).stdout)
-        sys.exit(f'run_test: {a.name}.result differs from {a.expected}')
+        sys.exit(f'run_test: {a.name}.result differs from {expected}')
     print(f'run_test: {a.name} passed')
 
 

@@ -20,7 +20,7 @@ namespace granular_dg
 
   namespace
   {
-    const char *const magic = "granular_dg checkpoint 1";
+    const char *const magic = "granular_dg checkpoint 2";
 
     volatile std::sig_atomic_t received_signal = 0;
 
@@ -196,6 +196,41 @@ namespace granular_dg
            parameter == "Output/overwrite";
   }
 
+  namespace
+  {
+    /// A parameter's value as resume compares it: the output directory as a
+    /// canonical path (rel, ./rel/ and /abs/rel are one directory), the
+    /// output times as a sorted list of numbers.
+    std::string
+    normalised(const std::string &name, const std::string &value)
+    {
+      if (name == "Output/directory")
+        {
+          std::error_code ec;
+          const auto      p = fs::weakly_canonical(fs::absolute(value, ec), ec);
+          return ec ? value : p.string();
+        }
+      if (name == "Output/output times")
+        {
+          std::vector<double> times;
+          for (const auto &s : Utilities::split_string_list(value, ','))
+            {
+              char        *end = nullptr;
+              const double t   = std::strtod(s.c_str(), &end);
+              if (end == s.c_str() || *end != '\0')
+                return value;
+              times.push_back(t);
+            }
+          std::sort(times.begin(), times.end());
+          std::ostringstream out;
+          for (const double t : times)
+            out << t << ',';
+          return out.str();
+        }
+      return value;
+    }
+  } // namespace
+
   void
   require_same_parameters(const ParameterList &before, const ParameterList &now,
                           const std::string &what)
@@ -206,13 +241,28 @@ namespace granular_dg
         if (may_change_on_resume(name))
           continue;
         const auto it = old.find(name);
-        if (it == old.end() || it->second != value)
+        if (it == old.end() || normalised(name, it->second) != normalised(name, value))
           throw InputError(
             "cannot resume " + what + ": it was run with '" + name + "' = '" +
             (it == old.end() ? "(not set)" : it->second) + "', this run has '" + value +
             "' (a resumed run may change only Time stepping/final time, Time stepping/max "
             "steps, Checkpoint/*, Output/progress interval)");
       }
+  }
+
+  bool
+  has_incomplete_checkpoint(const std::string &directory)
+  {
+    std::error_code ec;
+    const fs::path  dir = checkpoint_directory(directory);
+    if (fs::is_directory(dir, ec))
+      for (const auto &entry : fs::directory_iterator(dir, ec))
+        {
+          const std::string n = entry.path().filename().string();
+          if (n.size() > 9 && n[0] == '.' && n.compare(n.size() - 9, 9, ".ckpt.tmp") == 0)
+            return true;
+        }
+    return false;
   }
 
   std::string
@@ -246,7 +296,10 @@ namespace granular_dg
     const fs::path file = dir / name;
     if (Utilities::MPI::this_mpi_process(comm) == 0)
       {
-        std::error_code ec;
+        // a second Ctrl-C must not cut the checkpoint in half: SIGINT and
+        // SIGTERM wait until it is renamed into place
+        const SignalBlock block;
+        std::error_code   ec;
         fs::create_directories(dir, ec);
         const fs::path tmp = dir / (std::string(".") + name + ".tmp");
         {
@@ -342,7 +395,10 @@ namespace granular_dg
           error = "parameter 'Checkpoint/resume' = 'true' is not allowed: there is no usable "
                   "checkpoint in " +
                   checkpoint_directory(directory) +
-                  (skipped.empty() ? " (none was written)" : " (" + skipped + ")");
+                  (skipped.empty() ? " (none was written" : " (" + skipped) +
+                  (has_incomplete_checkpoint(directory) ?
+                     "; an incomplete checkpoint of an interrupted write was ignored)" :
+                     ")");
       }
     error = Utilities::MPI::broadcast(comm, error, 0);
     if (!error.empty())
@@ -375,6 +431,30 @@ namespace granular_dg
   {
     sigaction(SIGINT, &previous_int, nullptr);
     sigaction(SIGTERM, &previous_term, nullptr);
+  }
+
+  SignalBlock::SignalBlock()
+  {
+    sigset_t set;
+    sigemptyset(&set);
+    sigaddset(&set, SIGINT);
+    sigaddset(&set, SIGTERM);
+    sigprocmask(SIG_BLOCK, &set, &previous);
+  }
+
+  SignalBlock::~SignalBlock()
+  {
+    sigprocmask(SIG_SETMASK, &previous, nullptr);
+  }
+
+  void
+  block_interrupts_until_exit()
+  {
+    sigset_t set;
+    sigemptyset(&set);
+    sigaddset(&set, SIGINT);
+    sigaddset(&set, SIGTERM);
+    sigprocmask(SIG_BLOCK, &set, nullptr);
   }
 
   int
@@ -441,7 +521,8 @@ namespace granular_dg
         write  = global[0];
         signal = global[1];
       }
-    d.signal = signal;
+    d.signal    = signal;
+    d.scheduled = enabled && write != 0;
     // a run that stops writes a checkpoint to continue from
     d.write = enabled && (write != 0 || d.stop());
     return d;

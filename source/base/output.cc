@@ -2,16 +2,24 @@
 #include <granular_dg/base/errors.h>
 #include <granular_dg/base/output.h>
 
+#include <deal.II/base/utilities.h>
+
+#include <fcntl.h>
+#include <unistd.h>
+
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <iomanip>
 #include <iostream>
+#include <map>
+#include <set>
 #include <sstream>
 
 namespace granular_dg
 {
   namespace fs = std::filesystem;
+  using namespace dealii;
 
   std::string
   format_number(const double x)
@@ -87,6 +95,12 @@ namespace granular_dg
     items.emplace_back(key, object.str(2));
   }
 
+  void
+  JsonObject::add_fields(const JsonObject &object)
+  {
+    items.insert(items.end(), object.items.begin(), object.items.end());
+  }
+
   std::string
   JsonObject::str(const unsigned int indent) const
   {
@@ -109,6 +123,7 @@ namespace granular_dg
       out << str() << '\n';
     }
     fs::rename(tmp, filename);
+    record_output_file(filename);
   }
 
   void
@@ -117,6 +132,7 @@ namespace granular_dg
                   const std::string              &comment)
   {
     out.open(filename);
+    record_output_file(filename);
     if (!comment.empty())
       out << "# " << comment << '\n';
     for (unsigned int i = 0; i < header.size(); ++i)
@@ -160,62 +176,181 @@ namespace granular_dg
     out.open(filename, std::ios::app);
   }
 
+  namespace
+  {
+    const char *const manifest_name = ".granular_dg-manifest";
+
+    /// The files this process created in an output directory (rank 0):
+    /// the names relative to it, appended to DIR/.granular_dg-manifest as
+    /// they come, so that a killed run leaves a complete list. A run in a
+    /// subdirectory of another (a scene's part run) has its own as well.
+    struct Manifest
+    {
+      std::set<std::string> names;
+      std::ofstream         file;
+    };
+
+    std::map<fs::path, Manifest> &
+    manifests()
+    {
+      static std::map<fs::path, Manifest> m;
+      return m;
+    }
+
+    std::vector<std::string>
+    read_manifest(const fs::path &directory)
+    {
+      std::vector<std::string> names;
+      std::ifstream            in(directory / manifest_name);
+      std::string              line;
+      while (std::getline(in, line))
+        if (!line.empty())
+          names.push_back(line);
+      return names;
+    }
+
+    /// Remove what the previous run in directory wrote: the files its
+    /// manifest lists and its checkpoints. A file is removed only if it lies
+    /// inside directory (a manifest is plain text a user could edit).
+    void
+    remove_previous_run(const fs::path &directory)
+    {
+      std::error_code ec;
+      fs::remove_all(checkpoint_directory(directory.string()), ec);
+      const fs::path root = fs::weakly_canonical(directory, ec);
+      for (const auto &name : read_manifest(directory))
+        {
+          const fs::path file = fs::weakly_canonical(directory / name, ec);
+          const auto     rel  = file.lexically_relative(root).string();
+          if (!rel.empty() && rel.rfind("..", 0) != 0 && fs::is_regular_file(file, ec))
+            fs::remove(file, ec);
+        }
+      fs::remove(directory / manifest_name, ec);
+    }
+
+    /// What says that directory holds a previous run's results ("" if none).
+    std::string
+    previous_results(const fs::path &directory)
+    {
+      for (const char *m : {"summary.json", "solution.pvd", "timeseries.csv", "convergence.csv"})
+        if (fs::exists(directory / m))
+          return m;
+      // a run that was killed before it wrote any of them
+      return read_manifest(directory).empty() ? "" : std::string(manifest_name);
+    }
+
+    void
+    require_writable(const std::string &directory)
+    {
+      const fs::path probe = fs::path(directory) / ".granular_dg-write-test";
+      {
+        std::ofstream test(probe);
+        require(static_cast<bool>(test << "x" << std::flush), "Output/directory", directory,
+                "a writable directory");
+      }
+      std::error_code ec;
+      fs::remove(probe, ec);
+    }
+
+    void
+    create_directory(const std::string &directory)
+    {
+      require(!directory.empty(), "Output/directory", directory, "a directory name");
+      std::error_code ec;
+      fs::create_directories(directory, ec);
+      require(!ec && fs::is_directory(directory), "Output/directory", directory,
+              "a directory that can be created (" + ec.message() + ")");
+    }
+  } // namespace
+
+  void
+  begin_manifest(const std::string &directory, const bool continue_existing)
+  {
+    const fs::path root = fs::absolute(directory).lexically_normal();
+    Manifest      &m    = manifests()[root];
+    m.file.close();
+    m.names.clear();
+    if (continue_existing)
+      for (const auto &name : read_manifest(root))
+        m.names.insert(name);
+    m.file.open(root / manifest_name, continue_existing ? std::ios::app : std::ios::trunc);
+  }
+
+  void
+  record_output_file(const std::string &path)
+  {
+    const fs::path file = fs::absolute(path).lexically_normal();
+    for (auto &[root, m] : manifests())
+      {
+        const std::string rel = file.lexically_relative(root).string();
+        if (rel.empty() || rel.rfind("..", 0) == 0 || !m.names.insert(rel).second)
+          continue;
+        m.file << rel << '\n' << std::flush;
+      }
+  }
+
+  void
+  record_output_file(const std::string &directory, const std::string &name)
+  {
+    record_output_file((fs::path(directory) / name).string());
+  }
+
+  void
+  lock_output_directory(const std::string &directory)
+  {
+    // held until the process ends: the descriptors are never closed (a POSIX
+    // record lock, whose holder F_GETLK names; the file itself stays empty)
+    static std::map<std::string, int> held;
+    std::error_code                   ec;
+    const std::string key = fs::weakly_canonical(directory, ec).string();
+    if (held.count(key))
+      return;
+    const std::string lock = (fs::path(directory) / ".lock").string();
+    const int         fd   = ::open(lock.c_str(), O_RDWR | O_CREAT, 0644);
+    require(fd >= 0, "Output/directory", directory,
+            "a directory where " + lock + " can be created");
+    struct flock whole = {};
+    whole.l_type       = F_WRLCK;
+    whole.l_whence     = SEEK_SET;
+    if (::fcntl(fd, F_SETLK, &whole) != 0)
+      {
+        struct flock holder = whole;
+        const bool   known  = ::fcntl(fd, F_GETLK, &holder) == 0 && holder.l_type != F_UNLCK;
+        ::close(fd);
+        require(false, "Output/directory", directory,
+                "a directory no other run is using: process " +
+                  (known ? std::to_string(holder.l_pid) : std::string("?")) +
+                  " (a run or resume of granular_dg) holds its lock " + lock +
+                  "; wait for it to end, or choose another directory");
+      }
+    held[key] = fd;
+  }
+
+  void
+  prepare_benchmark_directory(const std::string &directory)
+  {
+    create_directory(directory);
+    lock_output_directory(directory);
+    require_writable(directory);
+  }
+
   void
   prepare_output_directory(const std::string &directory, const bool overwrite)
   {
-    const std::string parameter = "Output/directory";
-    require(!directory.empty(), parameter, directory, "a directory name");
-    std::error_code ec;
-    fs::create_directories(directory, ec);
-    require(!ec && fs::is_directory(directory),
-            parameter,
-            directory,
-            "a directory that can be created (" + ec.message() + ")");
-
-    // results of an earlier run?
-    const char *markers[] = {"summary.json", "solution.pvd", "timeseries.csv",
-                             "convergence.csv"};
-    for (const char *m : markers)
-      if (fs::exists(fs::path(directory) / m))
-        {
-          require(overwrite,
-                  parameter,
-                  directory,
-                  std::string("a directory without a previous run's results (it holds ") +
-                    m + "); choose another one or set Output/overwrite = true" +
-                    (has_checkpoints(directory, true) ?
-                       ", or continue that run with --resume" :
-                       ""));
-          fs::remove_all(checkpoint_directory(directory));
-          // remove what this program writes, so that nothing stale stays
-          for (const auto &entry : fs::directory_iterator(directory))
-            {
-              const std::string name = entry.path().filename().string();
-              // the scenes' files too (a stale slice or stress table must
-              // not pass for a result of the new run)
-              const char *prefixes[] = {"summary.json", "solution", "timeseries.csv",
-                                        "parameters.prm", "convergence", "profile-",
-                                        "modes-", "slice-", "stress-", "hopper-",
-                                        "radial-field", "fig9-scan.csv", "sgn-map.csv",
-                                        "history.csv", "final-profile.csv"};
-              bool ours = false;
-              for (const char *prefix : prefixes)
-                ours = ours || name.rfind(prefix, 0) == 0;
-              if (ours && entry.is_regular_file())
-                fs::remove(entry.path());
-            }
-          break;
-        }
-
-    const fs::path probe = fs::path(directory) / ".granular_dg-write-test";
-    {
-      std::ofstream test(probe);
-      require(static_cast<bool>(test << "x" << std::flush),
-              parameter,
-              directory,
-              "a writable directory");
-    }
-    fs::remove(probe, ec);
+    create_directory(directory);
+    lock_output_directory(directory);
+    const std::string marker = previous_results(directory);
+    if (!marker.empty())
+      {
+        require(overwrite, "Output/directory", directory,
+                std::string("a directory without a previous run's results (it holds ") +
+                  marker + "); choose another one or set Output/overwrite = true" +
+                  (has_checkpoints(directory, true) ? ", or continue that run with --resume" :
+                                                      ""));
+        remove_previous_run(directory);
+      }
+    require_writable(directory);
+    begin_manifest(directory, false);
   }
 
   void
@@ -234,6 +369,23 @@ namespace granular_dg
       out << "  </Collection>\n</VTKFile>\n";
     }
     fs::rename(tmp, filename);
+    record_output_file(filename);
+  }
+
+  std::string
+  format_bytes(const double bytes)
+  {
+    const char *unit[] = {"B", "kB", "MB", "GB", "TB", "PB"};
+    double      x      = bytes;
+    unsigned    u      = 0;
+    while (x >= 1000 && u < 5)
+      {
+        x /= 1000;
+        ++u;
+      }
+    char buffer[32];
+    std::snprintf(buffer, sizeof(buffer), u == 0 ? "%.0f %s" : "%.3g %s", x, unit[u]);
+    return buffer;
   }
 
   std::string

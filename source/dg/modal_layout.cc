@@ -9,6 +9,15 @@
 
 namespace granular_dg::dg
 {
+  std::vector<double>
+  legendre_values(const unsigned int n, const double xi)
+  {
+    std::vector<double> L(n);
+    for (unsigned int k = 0; k < n; ++k)
+      L[k] = Polynomials::Legendre(k).value(xi);
+    return L;
+  }
+
   template <int dim>
   void
   ModalLayout<dim>::reinit(const DoFHandler<dim> &dof_handler)
@@ -22,16 +31,10 @@ namespace granular_dg::dg
     AssertThrow(fe.n_dofs_per_cell() == n_comp * n_modes_cell,
                 ExcMessage("ModalLayout expects FESystem(FE_DGQLegendre(p), n)"));
 
-    at_1.resize(n_modes_1d);
-    at_0.resize(n_modes_1d);
-    for (unsigned int k = 0; k < n_modes_1d; ++k)
-      {
-        // FE_DGQLegendre's shape functions are the Legendre polynomials
-        // orthonormal on [0, 1]
-        const Polynomials::Legendre L(k);
-        at_1[k] = L.value(1.);
-        at_0[k] = L.value(0.);
-      }
+    // FE_DGQLegendre's shape functions are the Legendre polynomials
+    // orthonormal on [0, 1]
+    at_1 = legendre_values(n_modes_1d, 1.);
+    at_0 = legendre_values(n_modes_1d, 0.);
     AssertThrow(std::abs(at_1[0] - 1.) < 1e-14,
                 ExcMessage("expected the orthonormal Legendre basis with L_0 = 1"));
 

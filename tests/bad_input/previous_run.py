@@ -1,7 +1,9 @@
 #!/usr/bin/python3
 """An output directory that holds a previous run: refused without
-Output/overwrite, cleaned of the program's files (and only those) with it,
-and refused too when the previous run was killed before summary.json.
+Output/overwrite; with it, exactly the files the previous run wrote (its
+manifest) are removed, so that a user's files survive even when their names
+look like the program's; refused too when the previous run was killed
+before summary.json.
 
 usage: previous_run.py EXE PRM   (run in an empty directory; prints one line
 per check, compared with previous_run.output)
@@ -21,18 +23,21 @@ def run(*extra):
     return p.returncode, lines
 
 
-code, _ = run()
+# the first run writes one snapshot more than the ones after it
+code, _ = run('--set', 'Output/output interval=0.025')
 print(f'first run: exit {code}')
-# a stale file of an earlier run and a file of the user's
-open('out/slice-0042.csv', 'w').close()
+last = sorted(f for f in os.listdir('out') if f.startswith('profile-'))[-1]
+# files of the user's, one with a name like the program's
+open('out/solution-important.txt', 'w').close()
 open('out/notes.txt', 'w').close()
 code, err = run()
 print(f'second run without overwrite: exit {code}, {len(err)} line(s) on stderr')
 print(err[-1] if err else '')
-print(f'  results untouched: {os.path.exists("out/slice-0042.csv")}')
+print(f'  results untouched: {os.path.exists("out/" + last)}')
 code, err = run('--set', 'Output/overwrite=true')
 print(f'with overwrite = true: exit {code}')
-print(f'  stale slice-0042.csv removed: {not os.path.exists("out/slice-0042.csv")}')
+print(f'  the previous run\'s last snapshot removed: {not os.path.exists("out/" + last)}')
+print(f'  solution-important.txt kept: {os.path.exists("out/solution-important.txt")}')
 print(f'  notes.txt kept: {os.path.exists("out/notes.txt")}')
 # a run killed before it wrote summary.json still leaves results behind
 os.remove('out/summary.json')

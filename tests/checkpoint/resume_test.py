@@ -200,9 +200,12 @@ def content(path):
     with open(path, 'rb') as f:
         data = f.read()
     if os.path.basename(path) == 'parameters.prm':
-        # the output directories differ by name, and the resumed run says so
-        data = b'\n'.join(l for l in data.split(b'\n')
-                          if b'set directory' not in l and b'set resume' not in l)
+        # the output directories differ by name (and nothing else: a resumed
+        # run's parameters are the uninterrupted run's)
+        data = b'\n'.join(l for l in data.split(b'\n') if b'set directory' not in l)
+    if os.path.basename(path) == '.granular_dg-manifest':
+        # the files the run wrote, in the order it wrote them: a set
+        data = b'\n'.join(sorted(data.split(b'\n')))
     return data
 
 

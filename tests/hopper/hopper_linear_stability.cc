@@ -18,6 +18,7 @@
 #include <deal.II/grid/tria.h>
 #include <deal.II/lac/lapack_full_matrix.h>
 
+#include <granular_dg/dg/cell_quadrature.h>
 #include <granular_dg/dg/dg_operator.h>
 #include <granular_dg/equations/hopper_stress/radial_field.h>
 #include <granular_dg/equations/hopper_stress/system.h>
@@ -67,17 +68,21 @@ namespace
     dof_handler.distribute_dofs(fe);
     const MappingQ1<1> mapping;
     dg::BoundaryMap<1> boundary;
-    boundary[0].kind = dg::BoundaryKind::symmetry;
-    boundary[1].kind = dg::BoundaryKind::custom;
-    dg::DGOperator<1, System> op(physics, dg::NumericalFlux::roe_lax_friedrichs, boundary);
+    boundary[0].kind = System::symmetry;
+    boundary[1].kind = System::friction_wall;
+    dg::DGOperator<1, System> op(physics, boundary);
     op.reinit(mapping, dof_handler);
+    dg::ModalLayout<1> layout;
+    layout.reinit(dof_handler);
+    dg::CellQuadrature<1> quadrature;
+    quadrature.reinit(layout);
 
     dg::VectorType U, V, Rp, Rm;
     op.initialize_vector(U);
     op.initialize_vector(V);
     op.initialize_vector(Rp);
     op.initialize_vector(Rm);
-    op.project(Radial(field), U);
+    quadrature.project(Radial(field), U);
 
     const unsigned int  n = U.size();
     LAPACKFullMatrix<double> J(n, n);

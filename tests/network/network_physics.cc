@@ -14,7 +14,7 @@
 
 #include <granular_dg/base/errors.h>
 #include <granular_dg/equations/network_scalar/system.h>
-#include <granular_dg/network/junction.h>
+#include <granular_dg/equations/network_scalar/junction.h>
 
 #include <cmath>
 #include <iomanip>
@@ -40,8 +40,8 @@ namespace
     const auto   u = grid(lo, hi, 60);
     double       consistency = 0, derivative = 0, godunov = 0, eo = 0;
     unsigned int non_monotone = 0;
-    const dg::NumericalFlux types[] = {dg::NumericalFlux::upwind, dg::NumericalFlux::godunov,
-                                       dg::NumericalFlux::local_lax_friedrichs};
+    const NumericalFlux types[] = {NumericalFlux::upwind, NumericalFlux::godunov,
+                                       NumericalFlux::local_lax_friedrichs};
     for (const double a : u)
       {
         for (const auto type : types)
@@ -123,15 +123,15 @@ main()
     Um[0] = 0.7;
     Up[0] = -0.3;
     double d = 0;
-    for (const auto type : {dg::NumericalFlux::upwind, dg::NumericalFlux::godunov,
-                            dg::NumericalFlux::local_lax_friedrichs})
+    for (const auto type : {NumericalFlux::upwind, NumericalFlux::godunov,
+                            NumericalFlux::local_lax_friedrichs})
       {
         const FluxFunction &f = s.flux_function();
         n[0] = 1.;
-        d    = std::max(d, std::abs(s.numerical_flux(type, Um, Up, n, {}, {})[0] -
+        d    = std::max(d, std::abs(System(s.flux_function(), type).numerical_flux(Um, Up, n, {}, {})[0] -
                                  f.numerical_flux(type, 0.7, -0.3)));
         n[0] = -1.;
-        d    = std::max(d, std::abs(s.numerical_flux(type, Um, Up, n, {}, {})[0] +
+        d    = std::max(d, std::abs(System(s.flux_function(), type).numerical_flux(Um, Up, n, {}, {})[0] +
                                  f.numerical_flux(type, -0.3, 0.7)));
       }
     std::cout << "face flux F*.n for n = +-1: " << d << std::endl;
@@ -156,7 +156,7 @@ main()
     // per end: in-edge, loop in-end, loop out-end, out, out
     const Graph g = star({{Direction::in, burgers}, {Direction::loop, burgers},
                           {Direction::out, burgers}, {Direction::out, burgers}});
-    const Junction j(g, dg::NumericalFlux::upwind, 0.);
+    const Junction j(g, NumericalFlux::upwind, 0.);
     std::cout << "7.1 c_0 - 1: "
               << j.balance({std::sqrt(2.), 1., 1., 1., 1.}, 0.) - 1. << std::endl;
   }
@@ -164,7 +164,7 @@ main()
     const Graph    g = star({{Direction::in, traffic(1)}, {Direction::in, traffic(1)},
                              {Direction::out, traffic(2)}, {Direction::out, traffic(4)},
                              {Direction::out, traffic(4)}});
-    const Junction j(g, dg::NumericalFlux::upwind, 0.);
+    const Junction j(g, NumericalFlux::upwind, 0.);
     const double   c0 = j.balance({0.5, 0.5, 0., 0.2, 1.}, 0.);
     std::cout << "7.2 c_0 - (3 - sqrt 7)/2: " << c0 - (3 - std::sqrt(7.)) / 2
               << ", residual " << j.net_outflow({0.5, 0.5, 0., 0.2, 1.}, c0) << std::endl;
@@ -173,7 +173,7 @@ main()
     const Graph    g = star({{Direction::in, burgers}, {Direction::in, burgers},
                              {Direction::out, burgers}, {Direction::out, burgers},
                              {Direction::out, burgers}});
-    const Junction j(g, dg::NumericalFlux::upwind, 0.);
+    const Junction j(g, NumericalFlux::upwind, 0.);
     std::cout << "7.4 c_0 - sqrt(2/3): "
               << j.balance({1., 1., 0., 0.8, 2.}, 0.) - std::sqrt(2. / 3.) << std::endl;
   }
@@ -183,7 +183,7 @@ main()
     // the inflow of each road (f(u_0) = 1/2) and the outflow is the capacity
     const Graph g = star({{Direction::in, traffic(1)}, {Direction::in, traffic(1)},
                           {Direction::out, traffic(1)}});
-    const Junction j(g, dg::NumericalFlux::upwind, 0.);
+    const Junction j(g, NumericalFlux::upwind, 0.);
     const double   u0 = j.balance({0.5, 0.5, 0.2}, 0.);
     const auto     F  = j.end_fluxes({0.5, 0.5, 0.2}, u0);
     std::cout << "congested vertex: u_0 - (1 + sqrt(1/2))/2 = "
@@ -193,7 +193,7 @@ main()
   {
     // an ingoing edge and no outgoing one: nothing balances a positive flux
     const Graph    g = star({{Direction::in, FluxFunction{FluxLaw::linear, 1., 1.}}});
-    const Junction j(g, dg::NumericalFlux::upwind, 0.);
+    const Junction j(g, NumericalFlux::upwind, 0.);
     try
       {
         j.balance({1.}, 0.25);

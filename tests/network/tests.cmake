@@ -84,7 +84,8 @@ granular_dg_test(network/example_7_1_run PRM ../prm/network_example_7_1.prm
 if(PVPYTHON_EXECUTABLE)
   # ParaView opens the network's solution.pvd by absolute path: 7 steps at
   # t = 0, 0.125, ..., 0.625, 0.7; the arrays; 4 edges x 64 cells x 2 points
-  # + the vertex = 513 points; no NaN.
+  # + the vertex (a line patch of length 0 at the origin: 2 points) = 514
+  # points; no NaN.
   granular_dg_test(network/paraview_pvd EXE ${PVPYTHON_EXECUTABLE}
     ARGS --no-mpi ${CMAKE_CURRENT_SOURCE_DIR}/paraview/read_pvd.py
          ${CMAKE_CURRENT_BINARY_DIR}/network_7_1_run/out/solution.pvd

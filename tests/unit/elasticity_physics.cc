@@ -44,12 +44,12 @@ check(const StressLaw law, const char *law_name)
       n /= n.norm();
 
       const auto F = sys.flux(U, a);
-      for (const auto type : {dg::NumericalFlux::local_lax_friedrichs,
-                              dg::NumericalFlux::impedance})
+      for (const auto type : {NumericalFlux::local_lax_friedrichs,
+                              NumericalFlux::impedance})
         {
-          const auto Fs = sys.numerical_flux(type, U, U, n, a, a);
-          const auto Fa = sys.numerical_flux(type, U, V, n, a, a);
-          const auto Fb = sys.numerical_flux(type, V, U, -n, a, a);
+          const auto Fs = sys.with_numerical_flux(type).numerical_flux(U, U, n, a, a);
+          const auto Fa = sys.with_numerical_flux(type).numerical_flux(U, V, n, a, a);
+          const auto Fb = sys.with_numerical_flux(type).numerical_flux(V, U, -n, a, a);
           for (unsigned int c = 0; c < nc; ++c)
             {
               e_consistency = std::max(e_consistency, std::abs(Fs[c] - F[c] * n));

@@ -66,11 +66,11 @@ check(const StressLaw law, const char *law_name)
           U[1 + d] = soft.rho * w[d];
           V[1 + d] = stiff.rho * w[d];
         }
-      const auto F = sys.numerical_flux(dg::NumericalFlux::impedance, U, V, n, a_m, a_p);
+      const auto F = sys.with_numerical_flux(NumericalFlux::impedance).numerical_flux(U, V, n, a_m, a_p);
       e_contact    = std::max(e_contact, std::abs(F[0] + w * n));
       for (int d = 0; d < dim; ++d)
         e_contact = std::max(e_contact, std::abs(F[1 + d] + s * n[d]));
-      const auto G = sys.numerical_flux(dg::NumericalFlux::local_lax_friedrichs, U, V, n, a_m, a_p);
+      const auto G = sys.with_numerical_flux(NumericalFlux::local_lax_friedrichs).numerical_flux(U, V, n, a_m, a_p);
       llf_defect   = std::max(llf_defect, std::abs(G[0] + w * n));
 
       // random states on both sides of the interface
@@ -79,8 +79,8 @@ check(const StressLaw law, const char *law_name)
           U[c] = r(gen) + (c == 0 ? 0.35 : 0.);
           V[c] = r(gen) + (c == 0 ? 0.35 : 0.);
         }
-      const auto   Fa     = sys.numerical_flux(dg::NumericalFlux::impedance, U, V, n, a_m, a_p);
-      const auto   Fb     = sys.numerical_flux(dg::NumericalFlux::impedance, V, U, -n, a_p, a_m);
+      const auto   Fa     = sys.with_numerical_flux(NumericalFlux::impedance).numerical_flux(U, V, n, a_m, a_p);
+      const auto   Fb     = sys.with_numerical_flux(NumericalFlux::impedance).numerical_flux(V, U, -n, a_p, a_m);
       const double u_star = -Fa[0];
       double       s_star = 0;
       for (int d = 0; d < dim; ++d)
@@ -111,7 +111,7 @@ check(const StressLaw law, const char *law_name)
           U[c] = r(gen);
           V[c] = r(gen);
         }
-      const auto    F = sys_lin.numerical_flux(dg::NumericalFlux::impedance, U, V, n, a, a);
+      const auto    F = sys_lin.with_numerical_flux(NumericalFlux::impedance).numerical_flux(U, V, n, a, a);
       Tensor<2, nc> L, R;
       sys_lin.eigenvectors(U, n, a, L, R);
       const double c  = sys_lin.max_wave_speed(U, a);

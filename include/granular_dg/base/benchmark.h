@@ -35,7 +35,6 @@ namespace granular_dg
       limiter,
       post_limiter_hook,
       admissibility,
-      coupling,        ///< network: vertex traces, junction, far-end fluxes
       time_step,       ///< max wave speed / h
       end_of_step_hook,
       state_copy,      ///< the last good state kept for failures
@@ -99,11 +98,13 @@ namespace granular_dg
   /**
    * Runs the benchmark protocol: warm-up steps, calibration of the steps per
    * repetition (doubling until a block takes min_time of CPU), then the
-   * repetitions. step(phases) advances one time step and charges its phases.
+   * repetitions. step(phases) advances one time step, charges its phases
+   * and returns the seconds of work in it that are not part of a step (a
+   * restart from the initial state), which the block's times leave out.
    * Returns the repetitions (collective over MPI_COMM_WORLD).
    */
   std::vector<BenchmarkRepetition>
-  run_benchmark(const BenchmarkParameters &params, const std::function<void(StepPhases *)> &step);
+  run_benchmark(const BenchmarkParameters &params, const std::function<double(StepPhases *)> &step);
 
   /// benchmark.json in directory (rank 0): the case, the load before and
   /// after, per repetition and as min/median the CPU time per step, the

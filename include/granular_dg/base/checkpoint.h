@@ -188,6 +188,12 @@ namespace granular_dg
   std::string
   checkpoint_directory(const std::string &directory);
 
+  /// Whether DIRECTORY/checkpoints holds the temporary file of a checkpoint
+  /// whose writing was cut off (ignored by resume and removed by the next
+  /// checkpoint or an overwrite).
+  bool
+  has_incomplete_checkpoint(const std::string &directory);
+
   /// Whether directory, or a subdirectory of it (a scene's part run), holds
   /// a checkpoint file.
   bool
@@ -232,6 +238,26 @@ namespace granular_dg
     struct sigaction previous_int, previous_term;
   };
 
+  /// While it lives, SIGINT and SIGTERM are held back (delivered when it ends).
+  class SignalBlock
+  {
+  public:
+    SignalBlock();
+    ~SignalBlock();
+    SignalBlock(const SignalBlock &) = delete;
+    SignalBlock &
+    operator=(const SignalBlock &) = delete;
+
+  private:
+    sigset_t previous;
+  };
+
+  /// Hold back SIGINT and SIGTERM for the rest of the process: a run that
+  /// stops on a signal writes its final checkpoint and summary whatever
+  /// further signals arrive.
+  void
+  block_interrupts_until_exit();
+
   /// The signal received so far (0: none).
   int
   interrupt_signal();
@@ -252,9 +278,10 @@ namespace granular_dg
   public:
     struct Decision
     {
-      bool write  = false; ///< write a checkpoint now
-      int  signal = 0;     ///< stop: this signal arrived
+      bool write     = false; ///< write a checkpoint now
+      int  signal    = 0;     ///< stop: this signal arrived
       bool max_steps = false; ///< stop: the step counter reached max steps
+      bool scheduled = false; ///< a checkpoint is due by steps or wall time
       bool
       stop() const
       {

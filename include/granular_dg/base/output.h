@@ -24,6 +24,8 @@ namespace granular_dg
     void add(const std::string &key, const char *value) { add(key, std::string(value)); }
     void add(const std::string &key, const std::vector<double> &values);
     void add_object(const std::string &key, const JsonObject &object);
+    /// The entries of another object, appended at this level.
+    void add_fields(const JsonObject &object);
     std::string str(unsigned int indent = 0) const;
     /// Write to a temporary file and rename, so a reader never sees half.
     void write(const std::string &filename) const;
@@ -58,11 +60,43 @@ namespace granular_dg
   void
   truncate_file(const std::string &filename, std::uint64_t size);
 
-  /// The output directory of a run: created if missing, refused if it holds
-  /// a previous run's results unless overwrite is set, checked for writing.
-  /// Errors name the parameter 'Output/directory'.
+  /// The output directory of a run: created if missing, locked (see
+  /// lock_output_directory()), refused if it holds a previous run's results
+  /// unless overwrite is set, checked for writing; then this run's manifest
+  /// starts. Overwrite removes exactly the files the previous run's manifest
+  /// lists (and its checkpoints/), nothing a user put there. Errors name the
+  /// parameter 'Output/directory'.
   void
   prepare_output_directory(const std::string &directory, bool overwrite);
+
+  /// A benchmark's directory: created if missing and locked; it only gets
+  /// benchmark.json, so earlier results stay and are no reason to refuse.
+  void
+  prepare_benchmark_directory(const std::string &directory);
+
+  /// Take an exclusive lock on DIRECTORY/.lock for the life of the process
+  /// (flock: the OS releases it when the process dies, also by kill -9). A
+  /// directory locked by another process is an InputError naming its PID.
+  void
+  lock_output_directory(const std::string &directory);
+
+  /// Note in the manifest of the run writing to the directory begun last
+  /// (prepare_output_directory() or begin_manifest()) that this run created
+  /// path (a file under that directory; others are ignored). Rank 0 only;
+  /// every writer of this program calls it (CsvWriter, JsonObject, PVD,
+  /// snapshots).
+  void
+  record_output_file(const std::string &path);
+  void
+  record_output_file(const std::string &directory, const std::string &name);
+
+  /// Continue the manifest of the run in directory (a resumed run).
+  void
+  begin_manifest(const std::string &directory, bool continue_existing);
+
+  /// "1.5 MB", "320 kB", "12 B"
+  std::string
+  format_bytes(double bytes);
 
   /// ParaView's time-series index: solution.pvd with the physical times.
   void

@@ -15,15 +15,23 @@ namespace granular_dg::dg
   /// and the boundary data g (a Function of x and t with one value per
   /// component) into the exterior state U_p in boundary_state(); the
   /// numerical flux does the rest. What g means is the physics' business.
-  enum class BoundaryKind
+  /// The engine knows the generic kinds below (periodic boundaries are mesh
+  /// faces, not kinds); a physics declares its own with
+  /// physics_boundary_kind() (a traction boundary, a symmetry line, a
+  /// friction wall).
+  enum class BoundaryKind : unsigned int
   {
-    outflow,   ///< U_p = U_m (transmissive)
+    outflow,   ///< transmissive: what leaves leaves (the physics says how)
     dirichlet, ///< U_p = g
-    wall,      ///< mirror state of a wall moving with the velocity in g
-    traction,  ///< prescribed normal stress g[0]
-    symmetry,  ///< mirror state of a symmetry line (even/odd components)
-    custom     ///< a physics-specific condition (e.g. a friction wall)
+    wall       ///< mirror state of a wall moving with the velocity in g
   };
+
+  /// The i-th boundary kind of a physics (distinct from the generic ones).
+  constexpr BoundaryKind
+  physics_boundary_kind(const unsigned int i)
+  {
+    return static_cast<BoundaryKind>(16 + i);
+  }
 
   template <int dim>
   struct BoundaryCondition

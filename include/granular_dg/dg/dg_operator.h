@@ -9,6 +9,7 @@
 
 #include <granular_dg/dg/boundary.h>
 #include <granular_dg/dg/numerical_flux.h>
+#include <granular_dg/dg/operator.h>
 
 #include <array>
 #include <string>
@@ -16,42 +17,6 @@
 namespace granular_dg::dg
 {
   using namespace dealii;
-  using VectorType = LinearAlgebra::distributed::Vector<double>;
-
-  /// Where and why a state left the admissible set.
-  struct AdmissibilityReport
-  {
-    bool                 ok = true;
-    Point<3>             position; ///< first inadmissible quadrature point
-    std::vector<double>  state;
-    std::string          reason;
-  };
-
-  /// Collective: every rank gets the report of the lowest rank whose
-  /// report is not ok (rank 0 prints it), or its own when all are ok.
-  inline AdmissibilityReport
-  first_failure(AdmissibilityReport report, const MPI_Comm comm)
-  {
-    const unsigned int n_ranks = Utilities::MPI::n_mpi_processes(comm);
-    if (n_ranks == 1)
-      return report;
-    const unsigned int first =
-      Utilities::MPI::min(report.ok ? n_ranks : Utilities::MPI::this_mpi_process(comm), comm);
-    if (first == n_ranks)
-      return report;
-    std::vector<double> numbers = report.state;
-    for (unsigned int d = 0; d < 3; ++d)
-      numbers.push_back(report.position[d]);
-    const auto data = Utilities::MPI::broadcast(comm, std::make_pair(report.reason, numbers),
-                                                first);
-    report.ok     = false;
-    report.reason = data.first;
-    report.state.assign(data.second.begin(), data.second.end() - 3);
-    for (unsigned int d = 0; d < 3; ++d)
-      report.position[d] = data.second[data.second.size() - 3 + d];
-    return report;
-  }
-
   template <int dim, typename Physics>
   class DGOperator;
 
@@ -107,7 +72,7 @@ namespace granular_dg::dg
    * Physics-free explicit DG operator on MatrixFree (after deal.II step-67):
    * dst = M^{-1} ( (F(U), grad v) - <F* . n, v> + (S(U), v) ) for a Physics
    * policy (the contract is in doc/engine.md): n_components, flux(),
-   * max_wave_speed(), numerical_flux(type, U_m, U_p, n, a_m, a_p),
+   * max_wave_speed(), numerical_flux(U_m, U_p, n, a_m, a_p),
    * boundary_state(kind, U_m, n, g, a) and optionally source(). Every call
    * gets the per-cell coefficients a (Physics::coefficients(material_id),
    * e.g. density and modulus of a layer), stored per cell batch and lane and
@@ -115,8 +80,8 @@ namespace granular_dg::dg
    * The polynomial degree is a run-time value. The loops of every time step
    * run in internal::DGKernels: in 1D with the degree at run time
    * (FEEvaluation degree -1, one instantiation per Physics), in 2D compiled
-   * for each degree 0-4 (max_compiled_degree); the rest (setup, projection,
-   * integrals, errors) uses the run-time degree everywhere.
+   * for each degree 0-4 (max_compiled_degree); the setup uses the run-time
+   * degree.
    *
    * The quadrature has degree+2 Gauss points per direction (over-integration
    * of the nonlinear flux). The Legendre basis is orthonormal, so on the
@@ -124,7 +89,7 @@ namespace granular_dg::dg
    * 1/|K|.
    */
   template <int dim, typename Physics>
-  class DGOperator
+  class DGOperator : public Operator<dim>
   {
   public:
     static constexpr unsigned int n_components = Physics::n_components;
@@ -138,46 +103,33 @@ namespace granular_dg::dg
     template <typename T>
     using Coefficients = std::array<T, n_coefficients>;
 
-    DGOperator(const Physics &physics, NumericalFlux flux, BoundaryMap<dim> bc);
+    DGOperator(const Physics &physics, BoundaryMap<dim> bc);
+
+    std::string
+    engine_name() const override
+    {
+      return "matrix_free";
+    }
 
     void
-    reinit(const Mapping<dim> &mapping, const DoFHandler<dim> &dof_handler);
+    reinit(const Mapping<dim> &mapping, const DoFHandler<dim> &dof_handler) override;
 
     void
-    initialize_vector(VectorType &vector) const;
+    initialize_vector(VectorType &vector) const override;
 
     /// dst = M^{-1} R(t, src)
     void
-    apply(double time, const VectorType &src, VectorType &dst) const;
-
-    /// L2 projection of a Function with n_components components.
-    void
-    project(const Function<dim> &function, VectorType &dst) const;
+    apply(double time, const VectorType &src, VectorType &dst) const override;
 
     /// max over quadrature points of max(lambda(U), min_speed) *
     /// sum_d |row_d(J^{-1})|; the stable step is CFL / this value.
     double
-    max_speed_over_h(const VectorType &solution, double min_speed = 0.) const;
-
-    /// Integral of every component over the domain.
-    std::array<double, n_components>
-    integrals(const VectorType &solution) const;
-
-    /// Integral of a pointwise scalar functional of the state and the
-    /// cell's coefficients (e.g. the energy density).
-    double
-    integrate(const VectorType &solution,
-              const std::function<double(const State<double> &,
-                                         const Coefficients<double> &)> &density) const;
-
-    /// L1, L2 and Linf norms of (solution - exact) for each component.
-    std::array<std::array<double, 3>, n_components>
-    errors(const VectorType &solution, const Function<dim> &exact) const;
+    max_speed_over_h(const VectorType &solution, double min_speed) const override;
 
     /// Check every quadrature point against the Physics'
     /// admissibility_violation(); the first failure is reported.
     AdmissibilityReport
-    check_admissibility(const VectorType &solution) const;
+    check_admissibility(const VectorType &solution) const override;
 
     const MatrixFree<dim, Number> &
     matrix_free() const
@@ -217,7 +169,6 @@ namespace granular_dg::dg
     pack_coefficients(const unsigned int n_lanes, const CellOfLane &cell_of_lane) const;
 
     Physics                 phys;
-    NumericalFlux           flux_type;
     BoundaryMap<dim>        boundary;
     MatrixFree<dim, Number> data;
     VectorType              inverse_mass_diagonal;

@@ -6,10 +6,6 @@
 
 #include <granular_dg/dg/dg_operator.h>
 
-#include <boost/serialization/string.hpp>
-#include <boost/serialization/utility.hpp>
-#include <boost/serialization/vector.hpp>
-
 #include <limits>
 
 namespace granular_dg::dg
@@ -72,11 +68,8 @@ namespace granular_dg::dg
   } // namespace internal
 
   template <int dim, typename Physics>
-  DGOperator<dim, Physics>::DGOperator(const Physics   &physics,
-                                       NumericalFlux    flux,
-                                       BoundaryMap<dim> bc)
+  DGOperator<dim, Physics>::DGOperator(const Physics &physics, BoundaryMap<dim> bc)
     : phys(physics)
-    , flux_type(flux)
     , boundary(std::move(bc))
   {}
 
@@ -282,8 +275,7 @@ namespace granular_dg::dg
         const auto &a_p = op.face_coefficients_p[face];
         for (unsigned int q = 0; q < phi_m.n_q_points; ++q)
           {
-            const auto F = op.phys.numerical_flux(op.flux_type,
-                                                  get_state<n_components, VA>(phi_m, q),
+            const auto F = op.phys.numerical_flux(get_state<n_components, VA>(phi_m, q),
                                                   get_state<n_components, VA>(phi_p, q),
                                                   phi_m.get_normal_vector(q),
                                                   a_m,
@@ -337,7 +329,7 @@ namespace granular_dg::dg
                   }
               }
             const auto U_p = op.phys.boundary_state(bc.kind, U_m, n, g, a);
-            const auto F   = op.phys.numerical_flux(op.flux_type, U_m, U_p, n, a, a);
+            const auto F   = op.phys.numerical_flux(U_m, U_p, n, a, a);
             submit_state<n_components, VA>(phi, -F, q);
           }
         phi.integrate_scatter(EvaluationFlags::values, dst);
@@ -432,31 +424,6 @@ namespace granular_dg::dg
   }
 
   template <int dim, typename Physics>
-  void
-  DGOperator<dim, Physics>::project(const Function<dim> &function,
-                                    VectorType          &dst) const
-  {
-    AssertDimension(function.n_components, n_components);
-    FEEvaluation<dim, -1, 0, n_components, Number> phi(data);
-    for (unsigned int cell = 0; cell < data.n_cell_batches(); ++cell)
-      {
-        phi.reinit(cell);
-        for (unsigned int q = 0; q < phi.n_q_points; ++q)
-          {
-            const auto x = phi.quadrature_point(q);
-            State<VA>  U;
-            for (unsigned int v = 0; v < VA::size(); ++v)
-              for (unsigned int c = 0; c < n_components; ++c)
-                U[c][v] = function.value(internal::lane_point<dim>(x, v), c);
-            internal::submit_state<n_components, VA>(phi, U, q);
-          }
-        phi.integrate(EvaluationFlags::values);
-        phi.set_dof_values(dst);
-      }
-    dst.scale(inverse_mass_diagonal);
-  }
-
-  template <int dim, typename Physics>
   double
   DGOperator<dim, Physics>::max_speed_over_h(const VectorType &solution,
                                              const double      min_speed) const
@@ -464,97 +431,6 @@ namespace granular_dg::dg
     const double result =
       dispatch([&](const auto &kernels) { return kernels.max_speed_over_h(solution, min_speed); });
     return Utilities::MPI::max(result, solution.get_mpi_communicator());
-  }
-
-  template <int dim, typename Physics>
-  std::array<double, DGOperator<dim, Physics>::n_components>
-  DGOperator<dim, Physics>::integrals(const VectorType &solution) const
-  {
-    std::array<double, n_components>               sums{};
-    FEEvaluation<dim, -1, 0, n_components, Number> phi(data);
-    for (unsigned int cell = 0; cell < data.n_cell_batches(); ++cell)
-      {
-        phi.reinit(cell);
-        phi.gather_evaluate(solution, EvaluationFlags::values);
-        for (unsigned int q = 0; q < phi.n_q_points; ++q)
-          {
-            const auto U   = internal::get_state<n_components, VA>(phi, q);
-            const VA   JxW = phi.JxW(q);
-            for (unsigned int v = 0; v < data.n_active_entries_per_cell_batch(cell); ++v)
-              for (unsigned int c = 0; c < n_components; ++c)
-                sums[c] += U[c][v] * JxW[v];
-          }
-      }
-    for (auto &s : sums)
-      s = Utilities::MPI::sum(s, solution.get_mpi_communicator());
-    return sums;
-  }
-
-  template <int dim, typename Physics>
-  double
-  DGOperator<dim, Physics>::integrate(
-    const VectorType &solution,
-    const std::function<double(const State<double> &, const Coefficients<double> &)>
-      &density) const
-  {
-    double                                         sum = 0;
-    FEEvaluation<dim, -1, 0, n_components, Number> phi(data);
-    for (unsigned int cell = 0; cell < data.n_cell_batches(); ++cell)
-      {
-        phi.reinit(cell);
-        phi.gather_evaluate(solution, EvaluationFlags::values);
-        for (unsigned int q = 0; q < phi.n_q_points; ++q)
-          {
-            const auto U   = internal::get_state<n_components, VA>(phi, q);
-            const VA   JxW = phi.JxW(q);
-            for (unsigned int v = 0; v < data.n_active_entries_per_cell_batch(cell); ++v)
-              {
-                State<double> u;
-                for (unsigned int c = 0; c < n_components; ++c)
-                  u[c] = U[c][v];
-                sum += density(u, lane_coefficients(cell, v)) * JxW[v];
-              }
-          }
-      }
-    return Utilities::MPI::sum(sum, solution.get_mpi_communicator());
-  }
-
-  template <int dim, typename Physics>
-  std::array<std::array<double, 3>, DGOperator<dim, Physics>::n_components>
-  DGOperator<dim, Physics>::errors(const VectorType    &solution,
-                                   const Function<dim> &exact) const
-  {
-    std::array<std::array<double, 3>, n_components> e{};
-    // a richer quadrature than the operator's so the error is not aliased
-    FEEvaluation<dim, -1, 0, n_components, Number> phi(data);
-    for (unsigned int cell = 0; cell < data.n_cell_batches(); ++cell)
-      {
-        phi.reinit(cell);
-        phi.gather_evaluate(solution, EvaluationFlags::values);
-        for (unsigned int q = 0; q < phi.n_q_points; ++q)
-          {
-            const auto U   = internal::get_state<n_components, VA>(phi, q);
-            const auto x   = phi.quadrature_point(q);
-            const VA   JxW = phi.JxW(q);
-            for (unsigned int v = 0; v < data.n_active_entries_per_cell_batch(cell); ++v)
-              for (unsigned int c = 0; c < n_components; ++c)
-                {
-                  const double diff = std::abs(
-                    U[c][v] - exact.value(internal::lane_point<dim>(x, v), c));
-                  e[c][0] += diff * JxW[v];
-                  e[c][1] += diff * diff * JxW[v];
-                  e[c][2] = std::max(e[c][2], diff);
-                }
-          }
-      }
-    const MPI_Comm comm = solution.get_mpi_communicator();
-    for (auto &ec : e)
-      {
-        ec[0] = Utilities::MPI::sum(ec[0], comm);
-        ec[1] = std::sqrt(Utilities::MPI::sum(ec[1], comm));
-        ec[2] = Utilities::MPI::max(ec[2], comm);
-      }
-    return e;
   }
 
   template <int dim, typename Physics>

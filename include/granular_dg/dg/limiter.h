@@ -23,12 +23,15 @@ namespace granular_dg::dg
     std::array<bool, n_components>  known;      ///< false: use the other side's difference
   };
 
+  /// What the limiter limits: nothing, the conserved variables, the
+  /// characteristic fields, or variables the physics names (its
+  /// limiting_variables(), called by the name the physics gives them).
   enum class LimiterType
   {
     none,
     componentwise,
     characteristic,
-    flux_variables
+    physics_variables
   };
 
   /**
@@ -43,11 +46,10 @@ namespace granular_dg::dg
    * d at the cell average (with the cell's coefficients), limited field by
    * field, and transformed back.
    *
-   * In flux_variables mode the limiter works on variables W(U, a) that the
-   * physics names (Physics::limiting_variables(U, a) and its Jacobian
-   * limiting_jacobian(U, a)): for layered elasticity the stress and the
-   * velocity, which are continuous across material interfaces while the
-   * conserved strain and momentum jump there. The neighbour differences are
+   * In physics_variables mode the limiter works on variables W(U, a) that
+   * the physics names (Physics::limiting_variables(U, a) and its Jacobian
+   * limiting_jacobian(U, a)), e.g. variables that are continuous across
+   * material interfaces where the conserved ones jump. The neighbour differences are
    * W(avg_nb, a_nb) - W(avg, a) (each cell with its own material), the slopes
    * are mapped with the Jacobian at the cell average, and the limited slopes
    * mapped back.
@@ -150,7 +152,7 @@ namespace granular_dg::dg
     std::vector<std::size_t> base;
 
     mutable std::vector<unsigned char> troubled;
-    /// flux_variables: W(average) of every cell of the current apply()
+    /// physics_variables: W(average) of every cell of the current apply()
     mutable std::vector<State> limiting_values;
   };
 } // namespace granular_dg::dg

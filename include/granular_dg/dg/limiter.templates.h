@@ -41,13 +41,13 @@ namespace granular_dg::dg
     struct has_limiter_boundary<
       Physics, dim,
       std::void_t<decltype(std::declval<const Physics &>().limiter_boundary(
-        BoundaryKind::custom, Tensor<1, Physics::n_components>(),
+        BoundaryKind::outflow, Tensor<1, Physics::n_components>(),
         Tensor<1, Physics::n_components>(), Tensor<1, dim>(), Tensor<1, Physics::n_components>(),
         std::declval<const typename Physics::template Coefficients<double> &>(),
         static_cast<const Tensor<2, Physics::n_components> *>(nullptr)))>> : std::true_type
     {};
 
-    /// Whether the Physics names limiting variables (flux_variables mode).
+    /// Whether the Physics names limiting variables (physics_variables mode).
     template <typename Physics, typename = void>
     struct has_limiting_variables : std::false_type
     {};
@@ -69,11 +69,11 @@ namespace granular_dg::dg
     , M(tvb_M)
     , boundary(std::move(boundary))
   {
-    require(type != LimiterType::flux_variables ||
+    require(type != LimiterType::physics_variables ||
               internal::has_limiting_variables<Physics>::value,
-            "Limiter/scheme", "flux_variables",
+            "Limiter/scheme", "physics_variables",
             std::string("none, componentwise or characteristic: ") + Physics::name +
-              " names no flux variables");
+              " names no limiting variables");
   }
 
   template <int dim, typename Physics>
@@ -92,7 +92,7 @@ namespace granular_dg::dg
   {
     cells.reinit(dof_handler);
     troubled.assign(cells.n_owned(), 0);
-    // owned cells and the ghost neighbours (flux_variables needs theirs)
+    // owned cells and the ghost neighbours (physics_variables needs theirs)
     coefficients.resize(cells.n_cells());
     for (unsigned int i = 0; i < cells.n_cells(); ++i)
       coefficients[i] = physics.coefficients(cells.cell(i)->material_id());
@@ -182,9 +182,9 @@ namespace granular_dg::dg
           g[c] = face.condition.data->value(face.center, c);
       return g;
     };
-    constexpr bool flux_variables_possible = internal::has_limiting_variables<Physics>::value;
-    if constexpr (flux_variables_possible)
-      if (type == LimiterType::flux_variables)
+    constexpr bool physics_variables_possible = internal::has_limiting_variables<Physics>::value;
+    if constexpr (physics_variables_possible)
+      if (type == LimiterType::physics_variables)
         {
           limiting_values.resize(cells.n_cells());
           for (unsigned int i = 0; i < cells.n_cells(); ++i)
@@ -224,7 +224,7 @@ namespace granular_dg::dg
         // cell
         bool                                     is_troubled = false;
         std::array<Tensor<2, nc>, dim>           R; // characteristic: right eigenvectors
-        std::array<Tensor<2, nc>, dim>           J; // flux_variables: dW/dU
+        std::array<Tensor<2, nc>, dim>           J; // physics_variables: dW/dU
         std::array<State, dim>                   slope, dp_used, dm_used;
         std::array<double, dim>                  Mh2;
         for (int d = 0; d < dim; ++d)
@@ -249,8 +249,8 @@ namespace granular_dg::dg
             // the traces at the two faces (for limiter_boundary())
             const State face_value[2] = {avg - jump_m, avg + jump_p};
             Tensor<2, nc> L;
-            if constexpr (flux_variables_possible)
-              if (type == LimiterType::flux_variables)
+            if constexpr (physics_variables_possible)
+              if (type == LimiterType::physics_variables)
                 {
                   const State &W = limiting_values[i];
                   J[d]           = physics.limiting_jacobian(avg, a);
@@ -321,7 +321,7 @@ namespace granular_dg::dg
               s[c] = internal::minmod_tvb(slope[d][c], dp_used[d][c], dm_used[d][c], Mh2[d]);
             if (type == LimiterType::characteristic)
               s = R[d] * s;
-            else if (type == LimiterType::flux_variables)
+            else if (type == LimiterType::physics_variables)
               s = invert(J[d]) * s;
             const unsigned int stride = d == 0 ? 1 : n1;
             for (unsigned int c = 0; c < nc; ++c)

@@ -10,9 +10,8 @@
 
 #include <granular_dg/base/errors.h>
 #include <granular_dg/dg/boundary.h>
-#include <granular_dg/dg/dg_operator.h>
 #include <granular_dg/dg/modal_layout.h>
-#include <granular_dg/dg/numerical_flux.h>
+#include <granular_dg/dg/operator.h>
 #include <granular_dg/dg/time_integrator.h>
 
 #include <algorithm>
@@ -70,7 +69,7 @@ namespace granular_dg::dg
    * over the cells, with the rounding of the vector operations it replaces.
    */
   template <typename Physics>
-  class LineOperator
+  class LineOperator : public Operator<1>
   {
   public:
     static constexpr unsigned int n_components   = Physics::n_components;
@@ -80,14 +79,19 @@ namespace granular_dg::dg
     template <typename T>
     using Coefficients = std::array<T, n_coefficients>;
 
-    LineOperator(const Physics &physics, const NumericalFlux flux, BoundaryMap<1> bc)
+    LineOperator(const Physics &physics, BoundaryMap<1> bc)
       : phys(physics)
-      , flux_type(flux)
       , boundary(std::move(bc))
     {}
 
+    std::string
+    engine_name() const override
+    {
+      return "line";
+    }
+
     void
-    reinit(const Mapping<1> &, const DoFHandler<1> &dof_handler)
+    reinit(const Mapping<1> &, const DoFHandler<1> &dof_handler) override
     {
       // (unit tests may run without MPI_Init)
       require(!Utilities::MPI::job_supports_mpi() ||
@@ -161,15 +165,14 @@ namespace granular_dg::dg
     }
 
     void
-    initialize_vector(LinearAlgebra::distributed::Vector<double> &v) const
+    initialize_vector(VectorType &v) const override
     {
       v.reinit(n_dofs);
     }
 
     /// dst = M^{-1} R(t, src)
     void
-    apply(const double t, const LinearAlgebra::distributed::Vector<double> &src,
-          LinearAlgebra::distributed::Vector<double> &dst) const
+    apply(const double t, const VectorType &src, VectorType &dst) const override
     {
       dispatch([&](auto nm) {
         apply_impl<decltype(nm)::value>(t, src.begin(), [d = dst.begin()](const std::size_t i, const double rate) { d[i] = rate; });
@@ -179,9 +182,8 @@ namespace granular_dg::dg
     /// One Runge-Kutta stage in one pass (dg::StageUpdate; dst may be src or
     /// s.old): the same values as apply() and the vector operations.
     void
-    apply_stage(const double t, const LinearAlgebra::distributed::Vector<double> &src,
-                LinearAlgebra::distributed::Vector<double>             &dst,
-                const StageUpdate<LinearAlgebra::distributed::Vector<double>> &s) const
+    apply_stage(const double t, const VectorType &src, VectorType &dst,
+                const StageUpdate<> &s) const override
     {
       const double *u   = src.begin();
       double       *out = dst.begin();
@@ -199,76 +201,14 @@ namespace granular_dg::dg
       });
     }
 
-    /// L2 projection (the operator's quadrature, as DGOperator::project).
-    void
-    project(const Function<1> &f, LinearAlgebra::distributed::Vector<double> &dst) const
-    {
-      for (unsigned int c = 0; c < n_cells; ++c)
-        for (unsigned int i = 0; i < n_components; ++i)
-          for (unsigned int k = 0; k < n_modes; ++k)
-            {
-              double sum = 0;
-              for (unsigned int q = 0; q < n_q; ++q)
-                sum += weights[q] * basis[q][k] *
-                       f.value(Point<1>(x_left[c] + h[c] * points[q]), i);
-              dst(index(c, i, k)) = sum;
-            }
-    }
-
     double
-    max_speed_over_h(const LinearAlgebra::distributed::Vector<double> &u,
-                     const double                                      min_speed = 0.) const
+    max_speed_over_h(const VectorType &u, const double min_speed) const override
     {
       return dispatch([&](auto nm) { return max_speed_impl<decltype(nm)::value>(u.begin(), min_speed); });
     }
 
-    std::array<double, n_components>
-    integrals(const LinearAlgebra::distributed::Vector<double> &u) const
-    {
-      // the orthonormal L_0 = 1 integrates to 1, every other mode to 0
-      std::array<double, n_components> sums{};
-      for (unsigned int c = 0; c < n_cells; ++c)
-        for (unsigned int i = 0; i < n_components; ++i)
-          sums[i] += h[c] * u(index(c, i, 0));
-      return sums;
-    }
-
-    double
-    integrate(const LinearAlgebra::distributed::Vector<double> &u,
-              const std::function<double(const State<double> &, const Coefficients<double> &)>
-                &density) const
-    {
-      double sum = 0;
-      for (unsigned int c = 0; c < n_cells; ++c)
-        for (unsigned int q = 0; q < n_q; ++q)
-          sum += h[c] * weights[q] * density(state_at(u, c, q), coefficients[c]);
-      return sum;
-    }
-
-    std::array<std::array<double, 3>, n_components>
-    errors(const LinearAlgebra::distributed::Vector<double> &u, const Function<1> &exact) const
-    {
-      std::array<std::array<double, 3>, n_components> e{};
-      for (unsigned int c = 0; c < n_cells; ++c)
-        for (unsigned int q = 0; q < n_q; ++q)
-          {
-            const auto     U = state_at(u, c, q);
-            const Point<1> x(x_left[c] + h[c] * points[q]);
-            for (unsigned int i = 0; i < n_components; ++i)
-              {
-                const double diff = std::abs(U[i] - exact.value(x, i));
-                e[i][0] += h[c] * weights[q] * diff;
-                e[i][1] += h[c] * weights[q] * diff * diff;
-                e[i][2] = std::max(e[i][2], diff);
-              }
-          }
-      for (auto &ei : e)
-        ei[1] = std::sqrt(ei[1]);
-      return e;
-    }
-
     AdmissibilityReport
-    check_admissibility(const LinearAlgebra::distributed::Vector<double> &u) const
+    check_admissibility(const VectorType &u) const override
     {
       AdmissibilityReport report;
       // the fast scan (mode loops unrolled); the report from the first failure
@@ -400,7 +340,7 @@ namespace granular_dg::dg
       Tensor<1, 1> normal;
       normal[0]               = n;
       const State<double> U_p = phys.boundary_state(bc.kind, U_m, normal, g, a);
-      return phys.numerical_flux(flux_type, U_m, U_p, normal, a, a);
+      return phys.numerical_flux(U_m, U_p, normal, a, a);
     }
 
     /// out(i, r) for every vector index i of the cells and its value r of
@@ -439,8 +379,8 @@ namespace granular_dg::dg
           traces(n_cells - 1, U0, U1_previous);
           traces(0, U0, U1);
           first_left = U0;
-          F_left     = phys.numerical_flux(flux_type, U1_previous, U0, right,
-                                       coefficients[n_cells - 1], coefficients[0]);
+          F_left     = phys.numerical_flux(U1_previous, U0, right, coefficients[n_cells - 1],
+                                       coefficients[0]);
         }
       else
         {
@@ -492,10 +432,10 @@ namespace granular_dg::dg
           if (c + 1 < n_cells)
             {
               traces(c + 1, V0, V1);
-              F_right = phys.numerical_flux(flux_type, U1, V0, right, a, coefficients[c + 1]);
+              F_right = phys.numerical_flux(U1, V0, right, a, coefficients[c + 1]);
             }
           else if (periodic)
-            F_right = phys.numerical_flux(flux_type, U1, first_left, right, a, coefficients[0]);
+            F_right = phys.numerical_flux(U1, first_left, right, a, coefficients[0]);
           else
             F_right = boundary_flux(*right_bc, U1, 1., x_left[c] + h[c], t, a);
 
@@ -514,7 +454,6 @@ namespace granular_dg::dg
     static constexpr unsigned int max_points = max_modes + 1;
 
     Physics                           phys;
-    NumericalFlux                     flux_type;
     BoundaryMap<1>                    boundary;
     ModalLayout<1>                    layout;
     unsigned int                      n_cells = 0, n_modes = 1, n_q = 1;

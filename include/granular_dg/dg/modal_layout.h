@@ -40,6 +40,12 @@ namespace granular_dg::dg
       }
   }
 
+  /// L_0(xi), ..., L_{n-1}(xi): the orthonormal Legendre polynomials on
+  /// [0, 1], the 1D shape functions of FE_DGQLegendre (evaluated as deal.II
+  /// evaluates them, so that point values agree with FEValues').
+  std::vector<double>
+  legendre_values(unsigned int n, double xi);
+
   /**
    * Where the Legendre modes of FE_DGQLegendre live in a solution vector, cell
    * by cell, and who the neighbours are: the index tables behind the modal
@@ -111,6 +117,36 @@ namespace granular_dg::dg
     /// L_k(1) and L_k(0) of the 1D orthonormal Legendre polynomials on [0, 1]
     double value_at_1(const unsigned int k) const { return at_1[k]; }
     double value_at_0(const unsigned int k) const { return at_0[k]; }
+
+    /// Component i of cell c (a local index, see localize()) at the point
+    /// whose 1D Legendre values in direction d are L[d][0..degree]: the sum
+    /// over the modes m of u_m prod_d L[d][k_d(m)]. The one point evaluation
+    /// of modal fields in the program.
+    template <typename VectorType>
+    double
+    value(const VectorType &u, const unsigned int c, const unsigned int i,
+          const std::array<const double *, dim> &L) const
+    {
+      double sum = 0;
+      for (unsigned int m = 0; m < n_modes_cell; ++m)
+        {
+          double phi = L[0][m % n_modes_1d];
+          if constexpr (dim == 2)
+            phi *= L[1][m / n_modes_1d];
+          sum += u.local_element(index(c, i, m)) * phi;
+        }
+      return sum;
+    }
+
+    /// 1D: component i of cell c at reference coordinate xi in [0, 1].
+    template <typename VectorType>
+    double
+    value(const VectorType &u, const unsigned int c, const unsigned int i, const double xi) const
+    {
+      static_assert(dim == 1, "value(u, c, i, xi) is the 1D form");
+      const auto L = legendre_values(n_modes_1d, xi);
+      return value(u, c, i, {{L.data()}});
+    }
 
   private:
     unsigned int n_comp = 1, n_modes_1d = 1, n_modes_cell = 1, n_owned_cells = 0;

@@ -7,32 +7,9 @@ namespace granular_dg::dg
 {
   using namespace dealii;
 
-  /// Numerical fluxes selectable in the prm (Discretization/numerical
-  /// flux). Every physics provides local Lax-Friedrichs; the others are
-  /// physics-specific, and a scene's prm pattern lists only those its
-  /// physics implements:
-  ///  - impedance: elasticity's linearised Godunov flux that keeps u.n and
-  ///    sigma continuous across material interfaces;
-  ///  - roe_lax_friedrichs: Lax-Friedrichs with the speed of a Roe matrix;
-  ///  - upwind: the upwind / Engquist-Osher flux of a scalar law;
-  ///  - godunov: the exact Riemann solver's flux.
-  enum class NumericalFlux
-  {
-    local_lax_friedrichs,
-    impedance,
-    roe_lax_friedrichs,
-    upwind,
-    godunov
-  };
-
-  /// The operator behind a run: MatrixFree's DGOperator (any dim), or the lean
-  /// LineOperator (1D, serial); automatic takes the line engine in serial 1D.
-  enum class Engine
-  {
-    automatic,
-    matrix_free,
-    line
-  };
+  /// The numerical flux every physics offers (Discretization/numerical
+  /// flux); the others are declared by the physics that implements them.
+  inline const char *const local_lax_friedrichs_name = "local_lax_friedrichs";
 
   /// Local Lax-Friedrichs (Rusanov): {F}.n + lambda/2 (U_m - U_p),
   /// lambda = max(|lambda(U_m)|, |lambda(U_p)|), each side with its own

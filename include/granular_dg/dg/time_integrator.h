@@ -3,7 +3,6 @@
 #include <deal.II/lac/la_parallel_vector.h>
 
 #include <functional>
-#include <type_traits>
 #include <utility>
 
 namespace granular_dg::dg
@@ -68,20 +67,6 @@ namespace granular_dg::dg
                    stage_value(s.gamma, src, rate);
   }
 
-  namespace internal
-  {
-    template <typename Operator, typename Vector, typename = void>
-    struct has_apply_stage : std::false_type
-    {};
-    template <typename Operator, typename Vector>
-    struct has_apply_stage<
-      Operator, Vector,
-      std::void_t<decltype(std::declval<const Operator &>().apply_stage(
-        0., std::declval<const Vector &>(), std::declval<Vector &>(),
-        std::declval<const StageUpdate<Vector> &>()))>> : std::true_type
-    {};
-  } // namespace internal
-
   /**
    * Third-order strong-stability-preserving Runge-Kutta method in Shu-Osher
    * form:
@@ -93,10 +78,10 @@ namespace granular_dg::dg
    * explicit update in it: dt, dt/4 and 2 dt/3 — a stiff term treated
    * implicitly in the hook must carry exactly this weight to be consistent.
    *
-   * Vector needs reinit(const Vector &), equ(a, x), add(a, x) and
-   * sadd(s, a, x) (deal.II's vectors have them; so can a network state).
-   * An operator with apply_stage() (StageUpdate) does the operator and the
-   * vector updates of a stage in one pass, with the same results.
+   * Vector needs reinit(const Vector &) (deal.II's vectors have it; so can
+   * a network state); the operator's apply_stage() (StageUpdate) does the
+   * operator and the vector updates of a stage, with the results of apply()
+   * followed by Vector::sadd and Vector::add.
    */
   template <typename Vector = VectorType>
   class SSPRK3
@@ -104,6 +89,7 @@ namespace granular_dg::dg
   public:
     using PostStageHook = std::function<void(Vector &u, double stage_time, double weight)>;
 
+    /// One step: op.apply_stage(t, src, dst, StageUpdate) does a stage.
     template <typename Operator>
     void
     step(const Operator      &op,
@@ -112,43 +98,18 @@ namespace granular_dg::dg
          const double         dt,
          const PostStageHook &post_stage)
     {
-      if constexpr (internal::has_apply_stage<Operator, Vector>::value)
-        {
-          if (!initialized)
-            {
-              u1.reinit(u);
-              initialized = true;
-            }
-          op.apply_stage(t, u, u1, StageUpdate<Vector>{nullptr, 1., 0., dt});
-          post_stage(u1, t + dt, dt);
-          // u1 = 1/4 u1 + 3/4 u + dt/4 L(u1), in place
-          op.apply_stage(t + dt, u1, u1, StageUpdate<Vector>{&u, 0.25, 0.75, 0.25 * dt});
-          post_stage(u1, t + 0.5 * dt, 0.25 * dt);
-          // u = 2/3 u1 + 1/3 u + 2/3 dt L(u1)
-          op.apply_stage(t + 0.5 * dt, u1, u,
-                         StageUpdate<Vector>{&u, 2. / 3., 1. / 3., 2. / 3. * dt});
-          post_stage(u, t + dt, 2. / 3. * dt);
-          return;
-        }
       if (!initialized)
         {
-          k.reinit(u);
           u1.reinit(u);
           initialized = true;
         }
-      op.apply(t, u, k);
-      u1.equ(1., u);
-      u1.add(dt, k);
+      op.apply_stage(t, u, u1, StageUpdate<Vector>{nullptr, 1., 0., dt});
       post_stage(u1, t + dt, dt);
-
-      op.apply(t + dt, u1, k);
-      u1.sadd(0.25, 0.75, u);
-      u1.add(0.25 * dt, k);
+      // u1 = 1/4 u1 + 3/4 u + dt/4 L(u1), in place
+      op.apply_stage(t + dt, u1, u1, StageUpdate<Vector>{&u, 0.25, 0.75, 0.25 * dt});
       post_stage(u1, t + 0.5 * dt, 0.25 * dt);
-
-      op.apply(t + 0.5 * dt, u1, k);
-      u.sadd(1. / 3., 2. / 3., u1);
-      u.add(2. / 3. * dt, k);
+      // u = 2/3 u1 + 1/3 u + 2/3 dt L(u1)
+      op.apply_stage(t + 0.5 * dt, u1, u, StageUpdate<Vector>{&u, 2. / 3., 1. / 3., 2. / 3. * dt});
       post_stage(u, t + dt, 2. / 3. * dt);
     }
 
@@ -156,6 +117,26 @@ namespace granular_dg::dg
 
   private:
     bool   initialized = false;
-    Vector k, u1;
+    Vector u1;
+  };
+
+  /// The forward Euler step u = u + dt L(t, u) (one stage, in place), with
+  /// the post-stage hook after it.
+  template <typename Vector = VectorType>
+  class ForwardEuler
+  {
+  public:
+    using PostStageHook = std::function<void(Vector &u, double stage_time, double weight)>;
+
+    template <typename Operator>
+    void
+    step(const Operator &op, Vector &u, const double t, const double dt,
+         const PostStageHook &post_stage)
+    {
+      op.apply_stage(t, u, u, StageUpdate<Vector>{nullptr, 1., 0., dt});
+      post_stage(u, t + dt, dt);
+    }
+
+    static constexpr unsigned int n_stages = 1;
   };
 } // namespace granular_dg::dg

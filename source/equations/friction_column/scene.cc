@@ -16,11 +16,13 @@
 #include <deal.II/lac/vector.h>
 
 #include <granular_dg/base/parameters.h>
-#include <granular_dg/base/simulation.h>
+#include <granular_dg/base/run_parameters.h>
+#include <granular_dg/base/scene.h>
+#include <granular_dg/dg/parameters.h>
+#include <granular_dg/dg/solver.h>
 #include <granular_dg/equations/friction_column/closed_form.h>
 #include <granular_dg/equations/friction_column/friction.h>
 #include <granular_dg/equations/friction_column/system.h>
-#include <granular_dg/scenes/scenes.h>
 
 #include <cstdio>
 #include <fstream>
@@ -54,7 +56,7 @@ namespace granular_dg::column
     };
 
     /// Everything the scene measures along the way.
-    class ColumnHooks : public SceneHooks<1>
+    class ColumnHooks : public dg::SceneHooks<1>
     {
     public:
       /// directory empty: write nothing (convergence studies)
@@ -592,6 +594,8 @@ namespace granular_dg::column
     void
     declare(ParameterHandler &prm)
     {
+      RunParameters::declare(prm);
+      dg::DiscretizationParameters::declare(prm, dg::local_lax_friedrichs_name);
       prm.enter_subsection("Physics");
       prm.declare_entry("stress exponent m", "1", Patterns::Double(),
                         "m >= 1 in sigma(u) = max(0, -u|u|^(m-1)) (2.2): 1 (linear), 3/2, 2.");
@@ -647,7 +651,7 @@ namespace granular_dg::column
     }
 
     ColumnParameters
-    parse(ParameterHandler &prm, const CommonParameters &common)
+    parse(ParameterHandler &prm, const RunParameters &common)
     {
       ColumnParameters p;
       prm.enter_subsection("Physics");
@@ -696,11 +700,11 @@ namespace granular_dg::column
       return p;
     }
 
-    SceneData<1, System>
-    make_scene(const ColumnParameters &p, const CommonParameters &common,
+    dg::SceneData<1, System>
+    make_scene(const ColumnParameters &p, const RunParameters &common,
                const unsigned int cells)
     {
-      SceneData<1, System> scene{"column", System(p.physics), {}, {}, {}, {}};
+      dg::SceneData<1, System> scene{"column", System(p.physics), {}, {}, {}, {}};
       scene.triangulation = std::make_shared<Triangulation<1>>();
       GridGenerator::subdivided_hyper_rectangle(*scene.triangulation,
                                                 std::vector<unsigned int>{cells}, Point<1>(0.),
@@ -718,7 +722,7 @@ namespace granular_dg::column
       if (p.closed_form)
         scene.exact = std::make_shared<LinearColumnFunction>(p.u_b);
       scene.hooks = std::make_shared<ColumnHooks>(scene.physics, p, common.final_time,
-                                                  common.convergence ? "" : common.directory);
+                                                  common.scene_directory());
       // the paper's time step: c dt/dx <= CFL with c = sqrt(-sigma'(u*)), u* the
       // largest strain, here the wall strain
       scene.min_wave_speed = scene.physics.sound_speed(p.u_b);
@@ -728,8 +732,10 @@ namespace granular_dg::column
     void
     run(ParameterHandler &prm)
     {
-      CommonParameters common;
+      RunParameters common;
       common.parse(prm);
+      dg::DiscretizationParameters method;
+      method.parse(prm, common);
       const ColumnParameters p = parse(prm, common);
       const System           system(p.physics);
       require(std::isfinite(system.stress(p.u_b)) && std::isfinite(system.sound_speed(p.u_b)),
@@ -739,25 +745,20 @@ namespace granular_dg::column
       if (common.convergence)
         require(p.closed_form, "Diagnostics/closed form", "false",
                 "true: a convergence study needs the exact solution");
+      require_reasonable_snapshot_count(
+        common, dg::snapshot_bytes(p.cells, method.degree, 1, 7, common.write_vtu));
       begin_output(common);
       if (common.convergence)
-        run_convergence_study<1, System>(
-          [&](const unsigned int cells) { return make_scene(p, common, cells); }, common);
+        dg::run_convergence_study<1, System>(
+          [&](const unsigned int cells) { return make_scene(p, common, cells); }, common, method);
       else
-        run_simulation(make_scene(p, common, p.cells), common, common.degree, true);
+        dg::run_simulation(make_scene(p, common, p.cells), common, method);
     }
-  } // namespace
 
-  Scene
-  scene()
-  {
-    Scene s;
-    s.name        = "column";
-    s.description = "granular column with Coulomb wall friction (dynamical Janssen model), "
-                    "u_t - v_z = 0, v_t + sigma(u)_z - G in -sgn(v) sigma(u), 1D";
-    s.fluxes      = "local_lax_friedrichs";
-    s.declare     = declare;
-    s.run         = run;
-    return s;
-  }
+    const RegisterScene registration(
+      {"column",
+       "granular column with Coulomb wall friction (dynamical Janssen model), "
+       "u_t - v_z = 0, v_t + sigma(u)_z - G in -sgn(v) sigma(u), 1D",
+       declare, run});
+  } // namespace
 } // namespace granular_dg::column

@@ -12,11 +12,14 @@
 
 #include <granular_dg/base/output.h>
 #include <granular_dg/base/parameters.h>
-#include <granular_dg/base/simulation.h>
+#include <granular_dg/base/run_parameters.h>
+#include <granular_dg/base/scene.h>
+#include <granular_dg/base/time_loop.h>
+#include <granular_dg/dg/parameters.h>
+#include <granular_dg/dg/solver.h>
 #include <granular_dg/equations/hopper_stress/radial_field.h>
 #include <granular_dg/equations/hopper_stress/system.h>
 #include <granular_dg/equations/hopper_stress/transition.h>
-#include <granular_dg/scenes/scenes.h>
 
 #include <algorithm>
 #include <cmath>
@@ -229,26 +232,6 @@ namespace granular_dg::hopper
       d.add(prefix + "n_solutions", static_cast<long long>(f.n_solutions()));
     }
 
-    /// The orthonormal Legendre polynomials of FE_DGQLegendre on [0, 1].
-    void
-    legendre(const unsigned int degree, const double x, std::vector<double> &L)
-    {
-      L.resize(degree + 1);
-      const double y = 2 * x - 1;
-      double       p0 = 1, p1 = y;
-      for (unsigned int k = 0; k <= degree; ++k)
-        {
-          double pk = k == 0 ? 1. : (k == 1 ? y : 0.);
-          if (k >= 2)
-            {
-              pk = ((2. * k - 1) * y * p1 - (k - 1.) * p0) / k;
-              p0 = p1;
-              p1 = pk;
-            }
-          L[k] = std::sqrt(2. * k + 1) * pk;
-        }
-    }
-
     /**
      * Diagnostics of the march: per step the hyperbolicity margin and the
      * difference to the lower hopper's radial field (hopper-steps.csv), per
@@ -256,7 +239,7 @@ namespace granular_dg::hopper
      * whole marched field in physical coordinates (hopper-field.vtu/.pvd/.csv,
      * unless Output/write vtu is false).
      */
-    class HopperHooks : public SceneHooks<1>
+    class HopperHooks : public dg::SceneHooks<1>
     {
     public:
       HopperHooks(const Parameters &p, const System &physics,
@@ -279,8 +262,6 @@ namespace granular_dg::hopper
                  const dg::ModalLayout<1> &l) override
       {
         layout = &l;
-        AssertThrow(std::abs(l.value_at_1(1) - std::sqrt(3.)) < 1e-12,
-                    ExcMessage("unexpected Legendre normalisation"));
         // cells ordered by theta, and the monitor points: Gauss points of
         // the operator's quadrature (degree + 2) and both ends of each cell
         order.resize(l.n_owned());
@@ -305,7 +286,7 @@ namespace granular_dg::hopper
                 MonitorPoint m;
                 m.cell  = i;
                 m.theta = a + xi * (b - a);
-                legendre(degree, xi, m.L);
+                m.L     = dg::legendre_values(degree + 1, xi);
                 const auto T  = lower->stresses(m.theta);
                 m.radial      = {{T[0], T[1]}};
                 m.radial_norm = std::hypot(T[0], T[1]);
@@ -503,9 +484,7 @@ namespace granular_dg::hopper
           std::min<unsigned int>(static_cast<unsigned int>(std::max(0., theta / h)), p.cells - 1);
         const unsigned int  cell = order[j];
         const double        a    = layout->cell(cell)->vertex(0)[0];
-        std::vector<double> L;
-        legendre(degree, std::clamp((theta - a) / h, 0., 1.), L);
-        return value_at(U, cell, L);
+        return value_at(U, cell, dg::legendre_values(degree + 1, std::clamp((theta - a) / h, 0., 1.)));
       }
 
       /// The monitors of a state (with_psi false: max_psi stays 0). The
@@ -813,8 +792,19 @@ namespace granular_dg::hopper
       const double      factor;
     };
 
+    /// summary.json of the modes without a time loop
     void
-    run_radial(const Parameters &p, const CommonParameters &common)
+    write_mode_summary(const RunParameters &common, const unsigned int degree,
+                       const RunResult &r)
+    {
+      EvolutionInfo info;
+      info.scene  = "hopper";
+      info.degree = degree;
+      write_summary(common.directory, info, r);
+    }
+
+    void
+    run_radial(const Parameters &p, const RunParameters &common, const unsigned int degree)
     {
       const auto lower = radial_field(p, p.theta_w, "Hopper/lower half-angle");
       lower->write_csv(common.directory + "/radial-field.csv", p.radial_points);
@@ -825,7 +815,7 @@ namespace granular_dg::hopper
       r.diagnostics.add("hyperbolic_limit_deg", p.material.hyperbolic_limit() / deg);
       r.diagnostics.add("singular_limit_deg", p.material.singular_limit() / deg);
       r.diagnostics.add("psi_derivative_at_wall", lower->psi_derivative_at_wall());
-      write_summary(common.directory, "hopper", 1, common.degree, r);
+      write_mode_summary(common, degree, r);
       std::cout << "  radial field of the " << geometry_names.name(p.geometry) << ", theta_w = "
                 << format_number(p.theta_w / deg) << " deg: sigma(0) = "
                 << format_number(lower->sigma_axis()) << " rho g r, shooting residual "
@@ -834,7 +824,7 @@ namespace granular_dg::hopper
     }
 
     void
-    run_scan(const Parameters &p, const CommonParameters &common)
+    run_scan(const Parameters &p, const RunParameters &common, const unsigned int degree)
     {
       const auto scan =
         scan_transitions(p.geometry, p.material, p.scan_from, p.scan_to, p.scan_step);
@@ -855,7 +845,7 @@ namespace granular_dg::hopper
       result.diagnostics.add("no_radial_field_from_deg", scan.no_radial_field_from);
       result.diagnostics.add("psi_wall_deg", p.material.psi_wall() / deg);
       result.diagnostics.add("hyperbolic_limit_deg", p.material.hyperbolic_limit() / deg);
-      write_summary(common.directory, "hopper", 1, common.degree, result);
+      write_mode_summary(common, degree, result);
       std::cout << "  Fig. 9 scan (" << geometry_names.name(p.geometry) << "): psi monotone up to "
                 << format_number(scan.monotone_up_to) << " deg, no steeper transition from "
                 << format_number(scan.zero_transition_at) << " deg; written to "
@@ -863,7 +853,8 @@ namespace granular_dg::hopper
     }
 
     void
-    run_march(const Parameters &p, const CommonParameters &common)
+    run_march(const Parameters &p, const RunParameters &common,
+              const dg::DiscretizationParameters &method)
     {
       require(Utilities::MPI::n_mpi_processes(MPI_COMM_WORLD) == 1, "MPI ranks",
               Utilities::MPI::n_mpi_processes(MPI_COMM_WORLD), "1 (the hopper scene is serial)");
@@ -874,8 +865,10 @@ namespace granular_dg::hopper
       const Transition transition(*upper, p.material, p.theta_w);
       const auto       check = transition.check(20001);
 
-      const System physics(p.geometry, p.variables, p.material);
-      SceneData<1, System> scene{"hopper", physics, {}, {}, {}, {}, {}};
+      const System physics(p.geometry, p.variables, p.material,
+                           numerical_flux_names.parse("Discretization/numerical flux",
+                                                      method.flux));
+      dg::SceneData<1, System> scene{"hopper", physics, {}, {}, {}, {}, {}};
       scene.time_name     = "tau";
       scene.triangulation = std::make_shared<Triangulation<1>>();
       GridGenerator::subdivided_hyper_rectangle(*scene.triangulation,
@@ -884,18 +877,23 @@ namespace granular_dg::hopper
                                                 true);
       for (const auto &cell : scene.triangulation->active_cell_iterators())
         cell->set_material_id(0);
-      scene.boundary[0].kind = dg::BoundaryKind::symmetry; // theta = 0
-      scene.boundary[1].kind = dg::BoundaryKind::custom;   // the friction wall
+      scene.boundary[0].kind = System::symmetry;      // theta = 0
+      scene.boundary[1].kind = System::friction_wall; // theta = theta_w
       scene.initial          = std::make_shared<InitialData>(transition, p.perturbation);
-      auto hooks = std::make_shared<HopperHooks>(p, physics, lower, upper, common.directory,
-                                                 common.final_time, common.degree,
-                                                 common.write_vtu);
+      auto hooks = std::make_shared<HopperHooks>(p, physics, lower, upper,
+                                                 common.scene_directory(), common.final_time,
+                                                 method.degree, common.write_vtu);
       scene.hooks = hooks;
 
+      require_reasonable_snapshot_count(
+        common, dg::snapshot_bytes(p.cells, method.degree, 1, 6, common.write_vtu));
       begin_output(common);
-      lower->write_csv(common.directory + "/radial-field.csv", p.radial_points);
-      if (upper != lower)
-        upper->write_csv(common.directory + "/radial-field-upper.csv", p.radial_points);
+      if (!common.benchmark.enabled)
+        {
+          lower->write_csv(common.directory + "/radial-field.csv", p.radial_points);
+          if (upper != lower)
+            upper->write_csv(common.directory + "/radial-field-upper.csv", p.radial_points);
+        }
       if (!check.ok)
         {
           std::ostringstream msg;
@@ -909,7 +907,7 @@ namespace granular_dg::hopper
               << "lower angles)";
           RunResult r;
           r.status = "failed: " + msg.str();
-          write_summary(common.directory, "hopper", 1, common.degree, r);
+          write_mode_summary(common, method.degree, r);
           throw RunError(msg.str());
         }
       std::cout << "  " << geometry_names.name(p.geometry) << ", Theta_w = "
@@ -918,40 +916,43 @@ namespace granular_dg::hopper
                 << format_number(lower->sigma_axis()) << " rho g r; marching to tau = "
                 << format_number(common.final_time) << " (r = "
                 << format_number(std::exp(-common.final_time)) << " r0)" << std::endl;
-      run_simulation(scene, common, common.degree, true);
+      dg::run_simulation(scene, common, method);
     }
-  } // namespace
 
-  Scene
-  scene()
-  {
-    Scene s;
-    s.name        = "hopper";
-    s.description = "steady Mohr-Coulomb stresses in a wedge or cone hopper, marched in "
-                    "tau = -ln(r/r0) (Gremaud & Matthews); radial fields, wall-angle "
-                    "transitions, the Fig. 9 scan";
-    s.fluxes      = "roe_lax_friedrichs|local_lax_friedrichs";
-    s.declare     = declare;
-    s.run         = [](ParameterHandler &prm) {
-      CommonParameters common;
+    void
+    declare_all(ParameterHandler &prm)
+    {
+      RunParameters::declare(prm);
+      dg::DiscretizationParameters::declare(prm, numerical_flux_names.selection());
+      declare(prm);
+    }
+
+    void
+    run(ParameterHandler &prm)
+    {
+      RunParameters common;
       common.parse(prm);
+      dg::DiscretizationParameters method;
+      method.parse(prm, common);
       const Parameters p = parse(prm);
       require(!common.resume || p.mode == Mode::march, "Checkpoint/resume", "true",
               "false in Hopper/mode = " + mode_names.name(p.mode) +
                 " (it has no time loop to continue)");
       if (p.mode == Mode::march)
-        run_march(p, common);
+        return run_march(p, common, method);
+      if (p.mode == Mode::radial)
+        radial_field(p, p.theta_w, "Hopper/lower half-angle"); // validate first
+      begin_output(common);
+      if (p.mode == Mode::radial)
+        run_radial(p, common, method.degree);
       else
-        {
-          if (p.mode == Mode::radial)
-            radial_field(p, p.theta_w, "Hopper/lower half-angle"); // validate first
-          begin_output(common);
-          if (p.mode == Mode::radial)
-            run_radial(p, common);
-          else
-            run_scan(p, common);
-        }
-    };
-    return s;
-  }
+        run_scan(p, common, method.degree);
+    }
+
+    const RegisterScene registration(
+      {"hopper",
+       "steady Mohr-Coulomb stresses in a wedge or cone hopper, marched in tau = -ln(r/r0) "
+       "(Gremaud & Matthews); radial fields, wall-angle transitions, the Fig. 9 scan",
+       declare_all, run});
+  } // namespace
 } // namespace granular_dg::hopper

@@ -17,10 +17,12 @@
 #include <deal.II/grid/grid_tools.h>
 
 #include <granular_dg/base/parameters.h>
-#include <granular_dg/base/reference_solution.h>
-#include <granular_dg/base/simulation.h>
+#include <granular_dg/base/run_parameters.h>
+#include <granular_dg/base/scene.h>
+#include <granular_dg/dg/parameters.h>
+#include <granular_dg/dg/reference_solution.h>
+#include <granular_dg/dg/solver.h>
 #include <granular_dg/equations/layered_elasticity/system.h>
-#include <granular_dg/scenes/scenes.h>
 
 #include <cmath>
 #include <algorithm>
@@ -161,7 +163,7 @@ namespace granular_dg::elasticity
      * and the Zhang-Shu positivity scaling of the strain after every stage.
      */
     template <int dim>
-    class LayeredHooks : public SceneHooks<dim>
+    class LayeredHooks : public dg::SceneHooks<dim>
     {
     public:
       /// directory empty: no slice files; slice_y NaN: no slice (2D only)
@@ -644,7 +646,8 @@ namespace granular_dg::elasticity
     /// every cell (all ranks see all coarse cells, so all agree).
     template <int dim>
     void
-    require_admissible_initial_state(ParameterHandler &prm, const SceneData<dim, System<dim>> &scene)
+    require_admissible_initial_state(ParameterHandler &prm,
+                                     const dg::SceneData<dim, System<dim>> &scene)
     {
       prm.enter_subsection("Initial condition");
       const std::string stress = Utilities::trim(prm.get("stress"));
@@ -685,7 +688,7 @@ namespace granular_dg::elasticity
     /// force_periodic_x: the second part of a run with "periodic from";
     /// output_directory: where the scene's own files go (empty: none).
     template <int dim>
-    SceneData<dim, System<dim>>
+    dg::SceneData<dim, System<dim>>
     make_scene(ParameterHandler &prm, const int cells_override, const std::string &output_directory,
                const bool force_periodic_x = false)
     {
@@ -701,10 +704,15 @@ namespace granular_dg::elasticity
       std::vector<unsigned int> cells{static_cast<unsigned int>(prm.get_integer("cells x")),
                                       static_cast<unsigned int>(prm.get_integer("cells y"))};
       prm.leave_subsection();
+      prm.enter_subsection("Discretization");
+      const NumericalFlux flux =
+        numerical_flux_names.parse("Discretization/numerical flux", prm.get("numerical flux"));
+      prm.leave_subsection();
       require(hi[0] > lo[0], "Mesh/x max", hi[0], "must be > x min");
       require(dim == 1 || hi[1] > lo[1], "Mesh/y max", hi[1], "must be > y min");
+      // a convergence study refines every direction: cells_override per direction
       if (cells_override > 0)
-        cells[0] = cells_override;
+        cells[0] = cells[1] = cells_override;
       if (layers.width > 0)
         {
           // every material interface a mesh face: a whole number of cells per
@@ -721,8 +729,8 @@ namespace granular_dg::elasticity
                     ") on a mesh face (cell size " + format_number(h) + ")");
         }
 
-      SceneData<dim, System<dim>> scene{
-        "layered_strip", System<dim>(law, layers.table()), {}, {}, {}, {}};
+      dg::SceneData<dim, System<dim>> scene{
+        "layered_strip", System<dim>(law, layers.table(), flux), {}, {}, {}, {}};
       if constexpr (dim == 1)
         {
           scene.triangulation = std::make_shared<Triangulation<1>>();
@@ -775,7 +783,7 @@ namespace granular_dg::elasticity
                     expected = dim;
                     break;
                   case Side::traction:
-                    bc.kind  = dg::BoundaryKind::traction;
+                    bc.kind  = System<dim>::traction;
                     expected = 1;
                     break;
                   case Side::dirichlet:
@@ -815,7 +823,18 @@ namespace granular_dg::elasticity
       else if (!reference.empty())
         {
           if constexpr (dim == 1)
-            scene.exact = std::make_shared<ModalReference>(reference, dim + 1);
+            {
+              auto file = std::make_shared<dg::ModalReference>(reference, dim + 1);
+              prm.enter_subsection("Time stepping");
+              const double final_time = prm.get_double("final time");
+              prm.leave_subsection();
+              // a reference of another time is no reference for this run
+              require(std::abs(file->time() - final_time) <= 1e-12 * std::abs(final_time),
+                      "Exact solution/reference file", reference,
+                      "a solution at the run's final time " + format_number(final_time) +
+                        " (the file holds t = " + format_number(file->time()) + ")");
+              scene.exact = file;
+            }
         }
 
       prm.enter_subsection("Limiter");
@@ -842,16 +861,16 @@ namespace granular_dg::elasticity
 
     template <int dim>
     void
-    run(ParameterHandler &prm, const CommonParameters &common)
+    run(ParameterHandler &prm, const RunParameters &common,
+        const dg::DiscretizationParameters &method)
     {
       prm.enter_subsection("Boundary conditions");
       const double periodic_from = prm.get_double("periodic from");
       prm.leave_subsection();
       // build (and so validate) everything before anything is written
-      const std::string directory = common.convergence ? "" : common.directory;
       auto              scene     = make_scene<dim>(
         prm, common.convergence ? common.convergence_cells.front() : 0,
-        periodic_from > 0 ? common.directory + "/before-periodic" : directory);
+        periodic_from > 0 ? common.directory + "/before-periodic" : common.scene_directory());
       if (common.convergence)
         require(static_cast<bool>(scene.exact), "Exact solution/available", "false",
                 "true: a convergence study needs the exact solution");
@@ -868,10 +887,13 @@ namespace granular_dg::elasticity
           prm.leave_subsection();
           make_scene<dim>(prm, 0, "", true); // validates the second part too
         }
+      require_reasonable_snapshot_count(
+        common, dg::snapshot_bytes(scene.triangulation->n_global_active_cells(), method.degree,
+                                   dim, 2 * dim + 2, common.write_vtu));
       begin_output(common);
       if (common.convergence)
-        run_convergence_study<dim, System<dim>>(
-          [&](unsigned int cells) { return make_scene<dim>(prm, cells, ""); }, common);
+        dg::run_convergence_study<dim, System<dim>>(
+          [&](unsigned int cells) { return make_scene<dim>(prm, cells, ""); }, common, method);
       else if (periodic_from > 0)
         {
           // two runs: part 1 in DIR/before-periodic, part 2 in DIR. A resumed
@@ -881,7 +903,7 @@ namespace granular_dg::elasticity
           std::shared_ptr<dg::VectorType> part_1_end;
           if (!resume_second)
             {
-              CommonParameters first = common;
+              RunParameters first = common;
               first.final_time       = periodic_from;
               first.directory        = common.directory + "/before-periodic";
               first.output_times.erase(std::remove_if(first.output_times.begin(),
@@ -896,46 +918,55 @@ namespace granular_dg::elasticity
               if (root)
                 std::cout << "  part 1: t in [0, " << format_number(periodic_from)
                           << "] with the boundary conditions of the file" << std::endl;
-              const auto before = run_simulation(scene, first, common.degree, true);
+              part_1_end        = std::make_shared<dg::VectorType>();
+              const auto before =
+                dg::run_simulation(scene, first, method, true, 1., part_1_end.get());
               if (before.status != "completed")
                 return; // stopped at max steps: part 2 comes with --resume
-              part_1_end = before.final_solution;
             }
           auto after       = make_scene<dim>(prm, 0, common.directory, true);
           after.start_time = periodic_from;
           after.initial_vector = part_1_end; // none when part 2 resumes
-          CommonParameters second = common;
+          RunParameters second = common;
           second.resume           = resume_second;
           if (root)
             std::cout << "  part 2: t in [" << format_number(periodic_from) << ", "
                       << format_number(common.final_time) << "], periodic in x" << std::endl;
-          run_simulation(after, second, common.degree, true);
+          dg::run_simulation(after, second, method);
         }
       else
-        run_simulation(scene, common, common.degree, true);
+        dg::run_simulation(scene, common, method);
     }
-  } // namespace
 
-  Scene
-  scene()
-  {
-    Scene s;
-    s.name        = "layered_strip";
-    s.description = "nonlinear elasticity eps_t - div u = 0, (rho u)_t - grad sigma(eps) = 0 "
-                    "in a layered (or homogeneous) medium, 1D or 2D";
-    s.fluxes      = "local_lax_friedrichs|impedance";
-    s.declare     = declare;
-    s.run         = [](ParameterHandler &prm) {
-      CommonParameters common;
+    void
+    declare_all(ParameterHandler &prm)
+    {
+      RunParameters::declare(prm);
+      dg::DiscretizationParameters::declare(prm, numerical_flux_names.selection(),
+                                            System<1>::limiting_variables_name);
+      declare(prm);
+    }
+
+    void
+    run_scene(ParameterHandler &prm)
+    {
+      RunParameters common;
       common.parse(prm);
+      dg::DiscretizationParameters method;
+      method.parse(prm, common, System<1>::limiting_variables_name);
       prm.enter_subsection("Mesh");
       const int dim = prm.get_integer("dimension");
       prm.leave_subsection();
       if (dim == 1)
-        run<1>(prm, common);
+        run<1>(prm, common, method);
       else
-        run<2>(prm, common);
-    };
-    return s;
-  }
+        run<2>(prm, common, method);
+    }
+
+    const RegisterScene registration(
+      {"layered_strip",
+       "nonlinear elasticity eps_t - div u = 0, (rho u)_t - grad sigma(eps) = 0 in a layered "
+       "(or homogeneous) medium, 1D or 2D",
+       declare_all, run_scene});
+  } // namespace
 } // namespace granular_dg::elasticity

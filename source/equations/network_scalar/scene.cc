@@ -9,11 +9,12 @@
 #include <deal.II/base/mpi.h>
 
 #include <granular_dg/base/parameters.h>
-#include <granular_dg/base/simulation.h>
+#include <granular_dg/base/run_parameters.h>
+#include <granular_dg/base/scene.h>
+#include <granular_dg/dg/parameters.h>
 #include <granular_dg/equations/network_scalar/examples.h>
+#include <granular_dg/equations/network_scalar/network.h>
 #include <granular_dg/equations/network_scalar/system.h>
-#include <granular_dg/network/network.h>
-#include <granular_dg/scenes/scenes.h>
 
 #include <cmath>
 
@@ -61,6 +62,8 @@ namespace granular_dg::network
     void
     declare(ParameterHandler &prm)
     {
+      RunParameters::declare(prm);
+      dg::DiscretizationParameters::declare(prm, numerical_flux_names.selection());
       // the paper's scheme unless the file says otherwise
       prm.enter_subsection("Discretization");
       prm.set("degree", "0");
@@ -125,12 +128,6 @@ namespace granular_dg::network
       prm.declare_entry("integrator", "auto", integrator_names.pattern(),
                         "auto: forward_euler at degree 0 (exactly the paper's scheme (4.1)) "
                         "and ssprk3 at degree >= 1.");
-      prm.leave_subsection();
-      prm.enter_subsection("Convergence");
-      prm.declare_entry("CFL numbers", "", Patterns::Anything(),
-                        "One CFL number per entry of Convergence/degrees (comma-separated); "
-                        "empty: Time stepping/CFL number for all. Convergence/cells are cells "
-                        "per unit length (2^l for grid level l).");
       prm.leave_subsection();
     }
 
@@ -234,14 +231,20 @@ namespace granular_dg::network
     }
 
     Case
-    make_case(ParameterHandler &prm, const CommonParameters &common)
+    make_case(ParameterHandler &prm, const RunParameters &common,
+              const dg::DiscretizationParameters &method)
     {
       Case c;
-      c.disc.degree  = common.degree;
-      c.disc.flux    = common.flux;
-      c.disc.cfl     = common.cfl;
-      c.disc.limiter = common.limiter;
-      c.disc.tvb_M   = common.tvb_M;
+      c.disc.degree         = method.degree;
+      c.disc.flux           = numerical_flux_names.parse("Discretization/numerical flux",
+                                                         method.flux);
+      c.disc.engine         = method.engine;
+      c.disc.cfl            = method.cfl;
+      c.disc.limiter        = method.limiter;
+      c.disc.limiter_name   = method.limiter_name;
+      c.disc.tvb_M          = method.tvb_M;
+      c.disc.profile_points = method.profile_points;
+      c.disc.write_vtu      = common.write_vtu;
 
       prm.enter_subsection("Time stepping");
       c.disc.integrator =
@@ -322,7 +325,7 @@ namespace granular_dg::network
           else
             {
               NetworkProblem probe(c.graph, c.disc, c.data);
-              probe.initialize(std::nullopt);
+              probe.initialize();
               u0 = probe.vertex_value();
             }
           c.exact = std::make_shared<InitialData>(f, u0);
@@ -336,39 +339,12 @@ namespace granular_dg::network
             c.data[k].initial_breakpoints = ex.exact->breakpoints(k, 0.);
         }
 
-      prm.enter_subsection("Convergence");
-      const std::string cfl_text = prm.get("CFL numbers");
-      prm.leave_subsection();
-      for (const auto &s : Utilities::split_string_list(cfl_text, ','))
-        {
-          double v = 0;
-          try
-            {
-              v = Utilities::string_to_double(s);
-            }
-          catch (...)
-            {
-              require(false, "Convergence/CFL numbers", cfl_text, "comma-separated numbers");
-            }
-          require(v > 0 && v <= 1, "Convergence/CFL numbers", cfl_text, "numbers in (0, 1]");
-          c.cfl.push_back(v);
-        }
-      const bool own_cfl = !c.cfl.empty();
+      c.cfl = common.convergence_cfl;
       if (c.cfl.empty())
-        c.cfl.assign(common.convergence_degrees.size(), common.cfl);
-      if (common.convergence)
-        {
-          require(c.cfl.size() == common.convergence_degrees.size(), "Convergence/CFL numbers",
-                  cfl_text,
-                  "one number per entry of Convergence/degrees (" +
-                    std::to_string(common.convergence_degrees.size()) + ")");
-          for (unsigned int i = 0; i < c.cfl.size(); ++i)
-            require_stable_cfl(c.cfl[i], common.convergence_degrees[i],
-                               own_cfl ? "Convergence/CFL numbers" : "Time stepping/CFL number");
-        }
+        c.cfl.assign(common.convergence_degrees.size(), method.cfl);
       // forward Euler is unstable with DG of degree >= 1 at every CFL number
       for (const unsigned int p : common.convergence ? common.convergence_degrees :
-                                                       std::vector<unsigned int>{common.degree})
+                                                       std::vector<unsigned int>{method.degree})
         require(c.disc.integrator != Integrator::forward_euler || p == 0,
                 "Time stepping/integrator", "forward_euler",
                 "auto or ssprk3 at degree " + std::to_string(p) +
@@ -382,13 +358,19 @@ namespace granular_dg::network
       if (Utilities::MPI::n_mpi_processes(MPI_COMM_WORLD) > 1)
         throw InputError("the network scene runs on one MPI rank (its edges are small serial "
                          "1D meshes): run it without mpirun");
-      CommonParameters common;
+      RunParameters common;
       common.parse(prm);
+      dg::DiscretizationParameters method;
+      method.parse(prm, common);
       // build (and so validate) everything before anything is written
-      const Case c = make_case(prm, common);
+      const Case c = make_case(prm, common, method);
       if (common.convergence)
         require(static_cast<bool>(c.exact), "Network/exact solution", "none",
                 "an exact solution: a convergence study measures errors");
+      {
+        NetworkProblem probe(c.graph, c.disc, c.data, c.vertex_value, c.exact.get());
+        require_reasonable_snapshot_count(common, probe.info().bytes_per_snapshot);
+      }
       begin_output(common);
       if (common.convergence)
         run_network_convergence(c.graph, c.data, c.disc, c.vertex_value, *c.exact, common,
@@ -396,18 +378,11 @@ namespace granular_dg::network
       else
         run_network(c.graph, c.data, c.disc, c.vertex_value, c.exact.get(), common, true);
     }
-  } // namespace
 
-  Scene
-  scene()
-  {
-    Scene s;
-    s.name        = "network";
-    s.description = "scalar conservation laws u_t + f_k(u)_x = 0 on a star network with a "
-                    "vertex control volume (linear, Burgers, traffic fluxes)";
-    s.fluxes      = "upwind|godunov|local_lax_friedrichs";
-    s.declare     = declare;
-    s.run         = run;
-    return s;
-  }
+    const RegisterScene registration(
+      {"network",
+       "scalar conservation laws u_t + f_k(u)_x = 0 on a star network with a vertex control "
+       "volume (linear, Burgers, traffic fluxes)",
+       declare, run});
+  } // namespace
 } // namespace granular_dg::network

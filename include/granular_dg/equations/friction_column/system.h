@@ -251,9 +251,10 @@ namespace granular_dg::column
       return U_p;
     }
 
+    /// Rusanov (local Lax-Friedrichs), the column's one numerical flux.
     template <typename Number>
     State<Number>
-    numerical_flux(const dg::NumericalFlux, const State<Number> &U_m,
+    numerical_flux(const State<Number> &U_m,
                    const State<Number> &U_p, const Tensor<1, 1, Number> &n,
                    const Coefficients<Number> &a_m, const Coefficients<Number> &a_p) const
     {

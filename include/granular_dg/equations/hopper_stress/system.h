@@ -73,6 +73,7 @@
 
 #include <granular_dg/dg/boundary.h>
 #include <granular_dg/dg/limiter.h>
+#include <granular_dg/base/parameters.h>
 #include <granular_dg/dg/numerical_flux.h>
 
 #include <array>
@@ -165,6 +166,16 @@ namespace granular_dg::hopper
     return {{rr, rt, tt}};
   }
 
+  /// The numerical fluxes of the march (Discretization/numerical flux).
+  enum class NumericalFlux
+  {
+    roe_lax_friedrichs,  ///< Lax-Friedrichs with the Roe matrix' spectral radius
+    local_lax_friedrichs ///< Rusanov
+  };
+  inline const EnumNames<NumericalFlux> numerical_flux_names(
+    {{NumericalFlux::roe_lax_friedrichs, "roe_lax_friedrichs"},
+     {NumericalFlux::local_lax_friedrichs, dg::local_lax_friedrichs_name}});
+
   /**
    * The physics policy of the marching problem (doc/engine.md), 1D in theta.
    */
@@ -176,6 +187,10 @@ namespace granular_dg::hopper
     static constexpr unsigned int n_coefficients  = 0;
     static constexpr const char  *name            = "Mohr-Coulomb hopper stress (passive state)";
     static constexpr bool         has_source_term = true;
+    /// theta = 0: the mirror state (T_rt odd)
+    static constexpr dg::BoundaryKind symmetry = dg::physics_boundary_kind(0);
+    /// theta = theta_w: Coulomb friction T_rr = chi_w T_rt (section 5)
+    static constexpr dg::BoundaryKind friction_wall = dg::physics_boundary_kind(1);
 
     template <typename Number>
     using State = Tensor<1, n_components, Number>;
@@ -184,8 +199,10 @@ namespace granular_dg::hopper
     template <typename Number>
     using Coefficients = std::array<Number, n_coefficients>;
 
-    System(const Geometry geometry, const Variables variables, const MohrCoulomb &material)
-      : geometry(geometry)
+    System(const Geometry geometry, const Variables variables, const MohrCoulomb &material,
+           const NumericalFlux flux = NumericalFlux::roe_lax_friedrichs)
+      : flux_type(flux)
+      , geometry(geometry)
       , variables(variables)
       , material(material)
       , s(material.s())
@@ -320,16 +337,17 @@ namespace granular_dg::hopper
       return std::max(std::abs(l[0]), std::abs(l[1]));
     }
 
+    /// The numerical flux of the run: Lax-Friedrichs with the Roe matrix'
+    /// spectral radius, or Rusanov.
     template <typename Number>
     State<Number>
-    numerical_flux(const dg::NumericalFlux        type,
-                   const State<Number>           &U_m,
+    numerical_flux(const State<Number>           &U_m,
                    const State<Number>           &U_p,
                    const Tensor<1, dim, Number>  &n,
                    const Coefficients<Number>    &a_m,
                    const Coefficients<Number>    &a_p) const
     {
-      if (type != dg::NumericalFlux::roe_lax_friedrichs)
+      if (flux_type != NumericalFlux::roe_lax_friedrichs)
         return dg::local_lax_friedrichs(*this, U_m, U_p, n, a_m, a_p);
       // Lax-Friedrichs with the spectral radius of the Roe matrix
       const auto   l      = roe_eigenvalues(U_m, U_p);
@@ -342,8 +360,8 @@ namespace granular_dg::hopper
       return F;
     }
 
-    /// Exterior states: symmetry (theta = 0) mirrors T_rt; custom is the
-    /// friction wall at theta = theta_w (normal +1) through the
+    /// Exterior states: symmetry (theta = 0) mirrors T_rt; friction_wall is
+    /// the wall at theta = theta_w (normal +1) through the
     /// characteristic boundary state of section 5; outflow copies.
     template <typename Number>
     State<Number>
@@ -358,15 +376,15 @@ namespace granular_dg::hopper
         {
           case dg::BoundaryKind::outflow:
             break;
-          case dg::BoundaryKind::symmetry:
+          case symmetry:
             U_p[1] = -U_m[1];
             break;
-          case dg::BoundaryKind::custom:
+          case friction_wall:
             U_p = wall_state(U_m);
             break;
           default:
-            AssertThrow(false, ExcMessage("hopper: boundary kinds are symmetry, custom "
-                                          "(friction wall) and outflow"));
+            AssertThrow(false, ExcMessage("hopper: boundary kinds are symmetry, "
+                                          "friction_wall and outflow"));
         }
       return U_p;
     }
@@ -399,7 +417,7 @@ namespace granular_dg::hopper
                      const State<double> &, const Coefficients<double> &,
                      const Tensor<2, n_components> *L) const
     {
-      if (kind != dg::BoundaryKind::custom)
+      if (kind != friction_wall)
         return std::nullopt;
       const State<double>                D = 2. * (wall_state(face_value) - avg);
       dg::LimiterBoundary<n_components> b;
@@ -556,6 +574,7 @@ namespace granular_dg::hopper
       return {{Number(-0.5) * (h_b + d), Number(0.5) * (d - h_b)}};
     }
 
+    NumericalFlux flux_type;
     Geometry    geometry;
     Variables   variables;
     MohrCoulomb material;

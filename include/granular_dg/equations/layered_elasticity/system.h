@@ -30,6 +30,7 @@
 #include <deal.II/base/tensor.h>
 #include <deal.II/base/vectorization.h>
 
+#include <granular_dg/base/parameters.h>
 #include <granular_dg/dg/boundary.h>
 #include <granular_dg/dg/numerical_flux.h>
 
@@ -49,6 +50,16 @@ namespace granular_dg::elasticity
     quadratic,  ///< (1.4) sigma = K eps + beta K^2 eps^2
     exponential ///< (1.5) sigma = exp(K eps) - 1
   };
+
+  /// The numerical fluxes of elasticity (Discretization/numerical flux).
+  enum class NumericalFlux
+  {
+    local_lax_friedrichs, ///< Rusanov, each side with its own material
+    impedance ///< the linearised Godunov flux that keeps u.n and sigma continuous
+  };
+  inline const EnumNames<NumericalFlux> numerical_flux_names(
+    {{NumericalFlux::local_lax_friedrichs, dg::local_lax_friedrichs_name},
+     {NumericalFlux::impedance, "impedance"}});
 
   /// Material data of one layer.
   struct Material
@@ -74,6 +85,10 @@ namespace granular_dg::elasticity
     static constexpr unsigned int n_coefficients  = 3;
     static constexpr const char  *name            = "nonlinear elasticity";
     static constexpr bool         has_source_term = false;
+    /// Limiter/scheme's name for limiting_variables() (stress and velocity)
+    static constexpr const char  *limiting_variables_name = "flux_variables";
+    /// a prescribed normal stress g[0] (BoundaryCondition::kind)
+    static constexpr dg::BoundaryKind traction = dg::physics_boundary_kind(0);
 
     template <typename Number>
     using State = Tensor<1, n_components, Number>;
@@ -84,14 +99,26 @@ namespace granular_dg::elasticity
     using Coefficients = std::array<Number, n_coefficients>;
 
     /// materials[id] is the material of the cells with material_id id.
-    System(const StressLaw law, std::vector<Material> materials)
+    System(const StressLaw law, std::vector<Material> materials,
+           const NumericalFlux flux = NumericalFlux::local_lax_friedrichs)
       : law(law)
+      , flux_type(flux)
       , materials(std::move(materials))
     {}
 
-    System(const StressLaw law, const Material &material)
-      : System(law, std::vector<Material>{material})
+    System(const StressLaw law, const Material &material,
+           const NumericalFlux flux = NumericalFlux::local_lax_friedrichs)
+      : System(law, std::vector<Material>{material}, flux)
     {}
+
+    /// The same system with another numerical flux.
+    System
+    with_numerical_flux(const NumericalFlux flux) const
+    {
+      System s    = *this;
+      s.flux_type = flux;
+      return s;
+    }
 
     Coefficients<double>
     coefficients(const types::material_id id) const
@@ -281,7 +308,7 @@ namespace granular_dg::elasticity
                 U_p[1 + d] += dm * normal[d];
               break;
             }
-          case dg::BoundaryKind::traction:
+          case traction:
             {
               // sigma(eps_p) = 2 g - sigma(eps_m) so that the average is g;
               // solved with the linearisation at eps_m
@@ -290,7 +317,8 @@ namespace granular_dg::elasticity
               break;
             }
           default:
-            AssertThrow(false, ExcMessage("elasticity has no boundary kind symmetry/custom"));
+            AssertThrow(false, ExcMessage("elasticity knows outflow, dirichlet, wall and "
+                                          "traction boundaries"));
         }
       return U_p;
     }
@@ -329,16 +357,16 @@ namespace granular_dg::elasticity
       return F;
     }
 
+    /// The numerical flux of the run (the impedance flux or Rusanov).
     template <typename Number>
     State<Number>
-    numerical_flux(const dg::NumericalFlux         type,
-                   const State<Number>            &U_m,
+    numerical_flux(const State<Number>            &U_m,
                    const State<Number>            &U_p,
                    const Tensor<1, dim, Number>   &n,
                    const Coefficients<Number>     &a_m,
                    const Coefficients<Number>     &a_p) const
     {
-      if (type == dg::NumericalFlux::impedance)
+      if (flux_type == NumericalFlux::impedance)
         return impedance_flux(U_m, U_p, n, a_m, a_p);
       return dg::local_lax_friedrichs(*this, U_m, U_p, n, a_m, a_p);
     }
@@ -433,6 +461,7 @@ namespace granular_dg::elasticity
 
   private:
     StressLaw             law;
+    NumericalFlux         flux_type;
     std::vector<Material> materials;
   };
 } // namespace granular_dg::elasticity

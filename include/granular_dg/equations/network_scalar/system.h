@@ -51,6 +51,7 @@
 #include <deal.II/base/tensor.h>
 #include <deal.II/base/vectorization.h>
 
+#include <granular_dg/base/parameters.h>
 #include <granular_dg/dg/boundary.h>
 #include <granular_dg/dg/numerical_flux.h>
 
@@ -63,6 +64,18 @@
 namespace granular_dg::network
 {
   using namespace dealii;
+
+  /// The numerical fluxes of scalar laws (Discretization/numerical flux).
+  enum class NumericalFlux
+  {
+    upwind,              ///< Engquist-Osher
+    godunov,             ///< the exact Riemann solver's flux
+    local_lax_friedrichs ///< Rusanov
+  };
+  inline const EnumNames<NumericalFlux> numerical_flux_names(
+    {{NumericalFlux::upwind, "upwind"},
+     {NumericalFlux::godunov, "godunov"},
+     {NumericalFlux::local_lax_friedrichs, dg::local_lax_friedrichs_name}});
 
   /// The flux laws of the examples.
   enum class FluxLaw
@@ -180,13 +193,13 @@ namespace granular_dg::network
     /// The numerical flux F(u_l, u_r) in the direction of the edge.
     template <typename Number>
     Number
-    numerical_flux(const dg::NumericalFlux type, const Number &u_l, const Number &u_r) const
+    numerical_flux(const NumericalFlux type, const Number &u_l, const Number &u_r) const
     {
       switch (type)
         {
-          case dg::NumericalFlux::upwind:
+          case NumericalFlux::upwind:
             return engquist_osher(u_l, u_r);
-          case dg::NumericalFlux::godunov:
+          case NumericalFlux::godunov:
             return godunov(u_l, u_r);
           default:
             return lax_friedrichs(u_l, u_r);
@@ -224,9 +237,10 @@ namespace granular_dg::network
     template <typename Number>
     using Coefficients = std::array<Number, 0>;
 
-    System() = default;
-    explicit System(const FluxFunction &f)
+    explicit System(const FluxFunction &f = {},
+                    const NumericalFlux flux = NumericalFlux::upwind)
       : f(f)
+      , flux_type(flux)
     {}
 
     const FluxFunction &
@@ -286,8 +300,7 @@ namespace granular_dg::network
     /// face's left state being the interior one, and -F(U_p, U_m) for n = -1.
     template <typename Number>
     State<Number>
-    numerical_flux(const dg::NumericalFlux       type,
-                   const State<Number>          &U_m,
+    numerical_flux(const State<Number>          &U_m,
                    const State<Number>          &U_p,
                    const Tensor<1, 1, Number>   &n,
                    const Coefficients<Number>   &,
@@ -299,7 +312,7 @@ namespace granular_dg::network
       const Number right = compare_and_apply_mask<SIMDComparison::greater_than>(
         n[0], Number(0.), U_p[0], U_m[0]);
       State<Number> F;
-      F[0] = n[0] * f.numerical_flux(type, left, right);
+      F[0] = n[0] * f.numerical_flux(flux_type, left, right);
       return F;
     }
 
@@ -330,6 +343,7 @@ namespace granular_dg::network
     }
 
   private:
-    FluxFunction f;
+    FluxFunction  f;
+    NumericalFlux flux_type;
   };
 } // namespace granular_dg::network

@@ -1,7 +1,7 @@
 #pragma once
 
 #include <granular_dg/dg/numerical_flux.h>
-#include <granular_dg/network/graph.h>
+#include <granular_dg/equations/network_scalar/graph.h>
 
 #include <vector>
 
@@ -26,7 +26,7 @@ namespace granular_dg::network
   class Junction
   {
   public:
-    Junction(const Graph &graph, dg::NumericalFlux type, double width);
+    Junction(const Graph &graph, NumericalFlux type, double width);
 
     /// The edge ends, in the order of the traces passed below.
     const std::vector<EdgeEnd> &
@@ -63,7 +63,7 @@ namespace granular_dg::network
   private:
     std::vector<EdgeEnd>      end_list;
     std::vector<FluxFunction> flux;
-    dg::NumericalFlux         type;
+    NumericalFlux         type;
     double                    dx0;
   };
 } // namespace granular_dg::network

@@ -1,14 +1,13 @@
-#include <deal.II/base/polynomial.h>
-
 #include <granular_dg/base/errors.h>
-#include <granular_dg/base/reference_solution.h>
+#include <granular_dg/dg/modal_layout.h>
+#include <granular_dg/dg/reference_solution.h>
 
 #include <algorithm>
 #include <cstdlib>
 #include <fstream>
 #include <sstream>
 
-namespace granular_dg
+namespace granular_dg::dg
 {
   ModalReference::ModalReference(const std::string &filename, const unsigned int n_components)
     : dealii::Function<1>(n_components)
@@ -55,8 +54,6 @@ namespace granular_dg
       }
     if (x_left.empty())
       throw InputError("reference solution '" + filename + "' has no cells");
-    for (unsigned int k = 0; k < n_modes; ++k)
-      basis.push_back(dealii::Polynomials::Legendre(k));
   }
 
   double
@@ -67,9 +64,10 @@ namespace granular_dg
     std::size_t c = std::upper_bound(x_left.begin(), x_left.end(), x) - x_left.begin();
     c             = c == 0 ? 0 : c - 1;
     const double xi = std::min(1., std::max(0., (x - x_left[c]) / h[c]));
+    const auto   L  = legendre_values(n_modes, xi);
     double       u  = 0;
     for (unsigned int k = 0; k < n_modes; ++k)
-      u += modes[(c * n_components + component) * n_modes + k] * basis[k].value(xi);
+      u += modes[(c * n_components + component) * n_modes + k] * L[k];
     return u;
   }
-} // namespace granular_dg
+} // namespace granular_dg::dg

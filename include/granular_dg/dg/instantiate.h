@@ -1,6 +1,6 @@
 #pragma once
 
-// Explicit instantiation of the engine and the driver for one (dim, Physics);
+// Explicit instantiation of the engine and the solver for one (dim, Physics);
 // included by one translation unit per pair, so each template is compiled once.
 // The per-step kernels of DGOperator in 2D are compiled per degree, each in
 // its own translation unit (instantiate_2d_p<K>.cc, 1.4-1.5 GB of compiler
@@ -8,9 +8,9 @@
 // GRANULAR_DG_INSTANTIATE_KERNELS (instantiate_kernels.h) instantiates one.
 // In 1D the run-time-degree kernels are instantiated with the operator.
 
-#include <granular_dg/base/simulation.templates.h>
 #include <granular_dg/dg/dg_operator.templates.h>
 #include <granular_dg/dg/limiter.templates.h>
+#include <granular_dg/dg/solver.templates.h>
 
 #define GRANULAR_DG_EXTERN_KERNELS(DIM, PHYSICS, DEGREE)                           \
   extern template struct granular_dg::dg::internal::DGKernels<DIM, PHYSICS, DEGREE>;
@@ -23,9 +23,13 @@
   GRANULAR_DG_EXTERN_KERNELS(DIM, PHYSICS, 4)                                      \
   template class granular_dg::dg::DGOperator<DIM, PHYSICS>;                       \
   template class granular_dg::dg::ModalLimiter<DIM, PHYSICS>;                     \
-  template granular_dg::RunResult granular_dg::run_simulation<DIM, PHYSICS>(      \
-    const granular_dg::SceneData<DIM, PHYSICS> &,                                 \
-    const granular_dg::CommonParameters &, unsigned int, bool, double);           \
-  template void granular_dg::run_convergence_study<DIM, PHYSICS>(                 \
-    const std::function<granular_dg::SceneData<DIM, PHYSICS>(unsigned int)> &,    \
-    const granular_dg::CommonParameters &);
+  template class granular_dg::dg::Solver<DIM, PHYSICS>;                           \
+  template granular_dg::RunResult granular_dg::dg::run_simulation<DIM, PHYSICS>(  \
+    const granular_dg::dg::SceneData<DIM, PHYSICS> &,                             \
+    const granular_dg::RunParameters &,                                           \
+    const granular_dg::dg::DiscretizationParameters &, bool, double,              \
+    granular_dg::dg::VectorType *);                                               \
+  template void granular_dg::dg::run_convergence_study<DIM, PHYSICS>(             \
+    const std::function<granular_dg::dg::SceneData<DIM, PHYSICS>(unsigned int)> &, \
+    const granular_dg::RunParameters &,                                           \
+    const granular_dg::dg::DiscretizationParameters &);

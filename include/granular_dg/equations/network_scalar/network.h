@@ -1,20 +1,22 @@
 #pragma once
 
 #include <deal.II/base/function.h>
-#include <deal.II/base/polynomial.h>
 #include <deal.II/dofs/dof_handler.h>
 #include <deal.II/fe/fe_system.h>
 #include <deal.II/fe/mapping_q1.h>
 #include <deal.II/grid/tria.h>
 
-#include <granular_dg/base/simulation.h>
+#include <granular_dg/base/evolution.h>
+#include <granular_dg/base/run_parameters.h>
+#include <granular_dg/dg/cell_quadrature.h>
 #include <granular_dg/dg/limiter.h>
-#include <granular_dg/dg/line_operator.h>
+#include <granular_dg/dg/operator.h>
+#include <granular_dg/dg/parameters.h>
 #include <granular_dg/dg/time_integrator.h>
+#include <granular_dg/equations/network_scalar/exact_solution.h>
+#include <granular_dg/equations/network_scalar/graph.h>
+#include <granular_dg/equations/network_scalar/junction.h>
 #include <granular_dg/equations/network_scalar/system.h>
-#include <granular_dg/network/exact_solution.h>
-#include <granular_dg/network/graph.h>
-#include <granular_dg/network/junction.h>
 
 #include <cmath>
 #include <memory>
@@ -24,24 +26,16 @@
 
 namespace granular_dg::network
 {
-  /// The DG operator of one edge: the lean 1D line operator (an edge is a
-  /// serial line of cells). The network talks to it only through reinit,
-  /// initialize_vector, apply, apply_stage, max_speed_over_h and integrals.
-  using EdgeOperator = dg::LineOperator<System>;
-  using EdgeLimiter  = dg::ModalLimiter<1, System>;
+  using EdgeLimiter = dg::ModalLimiter<1, System>;
 
   /// The state of the network: one DG vector per edge and the vertex value.
-  /// Has what dg::SSPRK3 needs of a vector; the vertex value is combined as
-  /// deal.II combines the edge vectors (every product rounded on its own).
+  /// Has what dg::SSPRK3 needs of a vector.
   struct NetworkState
   {
     std::vector<dg::VectorType> edges;
     double                      vertex = 0.;
 
     void reinit(const NetworkState &other);
-    void equ(double a, const NetworkState &x);
-    void add(double a, const NetworkState &x);
-    void sadd(double s, double a, const NetworkState &x);
   };
 
   enum class Integrator
@@ -55,9 +49,11 @@ namespace granular_dg::network
   struct Discretisation
   {
     unsigned int      degree = 0;
-    dg::NumericalFlux flux   = dg::NumericalFlux::upwind;
+    NumericalFlux     flux   = NumericalFlux::upwind;
+    dg::Engine        engine = dg::Engine::automatic;
     double            cfl    = 0.5;
     dg::LimiterType   limiter = dg::LimiterType::none;
+    std::string       limiter_name = "none";
     double            tvb_M   = 0.;
     /// 2^l at grid level l: an edge of length L gets round(L * this) cells
     double            cells_per_unit_length = 256;
@@ -65,6 +61,10 @@ namespace granular_dg::network
     /// N dx / 2; 0: a vertex without volume)
     double            vertex_width_factor = 1.;
     Integrator        integrator          = Integrator::automatic;
+    /// output: sample points per cell of the profiles (0: degree + 1, at
+    /// least 2), and whether solution-NNNN.vtu are written
+    unsigned int      profile_points = 0;
+    bool              write_vtu      = true;
   };
 
   /// Data of one edge: initial data u(x) and, for a Dirichlet far end, g(t)
@@ -77,16 +77,6 @@ namespace granular_dg::network
     std::vector<double>          initial_breakpoints;
   };
 
-  /// Where and why a stage produced an inadmissible state.
-  struct StateFailure
-  {
-    double      time;
-    int         edge; ///< -1: the vertex
-    double      x;
-    double      u;
-    std::string reason;
-  };
-
   /// Error norms over all edges and the vertex cell.
   struct NetworkErrors
   {
@@ -96,61 +86,81 @@ namespace granular_dg::network
   };
 
   /**
-   * The network as one discretisation: per edge a Triangulation<1>, a
-   * DoFHandler with FE_DGQLegendre, an EdgeOperator (whose vertex face is a
-   * Dirichlet boundary with the current vertex value) and a limiter; the
-   * Junction couples them. apply() is the semi-discrete right-hand side of
-   * the whole network, so dg::SSPRK3<NetworkState> advances it.
+   * The network as one discretisation and the Evolution the TimeLoop drives:
+   * per edge a Triangulation<1>, a DoFHandler with FE_DGQLegendre, a
+   * dg::Operator of the chosen engine (whose vertex face is a Dirichlet
+   * boundary with the current vertex value) and a limiter; the Junction
+   * couples them. apply_stage() is a Runge-Kutta stage of the whole network
+   * (edges and vertex), so dg::SSPRK3<NetworkState> and
+   * dg::ForwardEuler<NetworkState> advance it.
    */
-  class NetworkProblem
+  class NetworkProblem : public Evolution
   {
   public:
     NetworkProblem(const Graph &graph, const Discretisation &discretisation,
-                   std::vector<EdgeData> data);
-    ~NetworkProblem();
+                   std::vector<EdgeData> data, std::optional<double> vertex_value = {},
+                   const ExactSolution *exact = nullptr, const std::string &scene = "network");
+    ~NetworkProblem() override;
 
+    // ------------------------------------------------------------ Evolution
+    EvolutionInfo
+    info() const override;
     /// Project the initial data (exact cell averages at degree 0), limit,
     /// and set the vertex: the given value, or the discrete stationary one
-    /// for the initial edge traces (nullopt).
+    /// for the initial edge traces.
+    double
+    initialize() override;
     void
-    initialize(std::optional<double> vertex_value);
-
+    check_initial_state(double t) override;
     /// The CFL step of the current state: cfl * min h / max |f'|, the
     /// vertex value included (condition (4.7) for cfl <= 1/2).
     double
-    time_step() const;
-
+    time_step(double t) override;
     /// One step of the integrator (limiter after every stage); throws
-    /// StateFailure when a stage is not finite.
+    /// Inadmissible when a stage is not finite (or, at degree 0, leaves the
+    /// range of the data).
     void
-    step(double dt);
-
-    /// The semi-discrete right-hand side: dst = R(t, src).
+    advance(double t, double dt) override;
     void
-    apply(double t, const NetworkState &src, NetworkState &dst) const;
+    end_of_step(double t, double dt, unsigned long step) override;
+    void
+    store(Slot slot) override;
+    void
+    restore(Slot slot) override;
+    SnapshotFiles
+    write_snapshot(const std::string &directory, unsigned int index, double t) override;
+    std::vector<std::string>
+    timeseries_names() const override;
+    std::string
+    timeseries_comment() const override;
+    std::vector<double>
+    timeseries_values(double t) override;
+    void
+    save(ByteWriter &w) override;
+    void
+    load(ByteReader &r) override;
+    void
+    finish(double t, RunResult &result, bool write_files) override;
+    void
+    set_phases(StepPhases *p) override
+    {
+      phases = p;
+    }
 
+    // ------------------------------------------------------------ the method
     /// One Runge-Kutta stage (dg::StageUpdate; dst may be src or s.old):
-    /// apply() and the vector operations in one pass over every edge.
+    /// the coupling and every edge's operator and update.
     void
     apply_stage(double t, const NetworkState &src, NetworkState &dst,
                 const dg::StageUpdate<NetworkState> &s) const;
 
-    /// Charge the phases of the following steps to this (benchmark mode;
-    /// nullptr: no timing).
-    void set_phases(StepPhases *p) { phases = p; }
-
-    double time() const { return t; }
-    unsigned long n_steps() const { return steps; }
-    double last_time_step() const { return dt_last; }
     unsigned long n_dofs() const;
     unsigned long n_cells() const;
     unsigned int  n_stages() const;
     double        min_cell_size() const { return h_min; }
     const Graph  &graph() const { return net; }
     const Junction &junction() const { return *vertex; }
-    const Discretisation &discretisation() const { return disc; }
-    const NetworkState &state() const { return u; }
-    NetworkState       &state() { return u; }
+    double        vertex_value() const { return u.vertex; }
 
     /// Total mass: integrals over the edges + dx_0 u_0.
     double mass() const;
@@ -158,7 +168,6 @@ namespace granular_dg::network
     double boundary_inflow() const { return inflow; }
     /// L1 norm of the cell averages and the vertex (the scale of the drift).
     double l1_norm() const;
-    double vertex_value() const { return u.vertex; }
     /// Traces of the edges at the vertex ends (Junction::ends() order).
     std::vector<double> vertex_traces(const NetworkState &state) const;
     /// sum_in F - sum_out F at the vertex for the current state.
@@ -166,32 +175,23 @@ namespace granular_dg::network
     /// (4.4): TV of the cell averages along every edge plus the jumps
     /// between the vertex and its neighbouring cells.
     double total_variation() const;
-    NetworkErrors errors(const ExactSolution &exact) const;
+    NetworkErrors errors(const ExactSolution &exact, double t) const;
     /// ||u - v||_L1 over edges and vertex (same mesh).
     double l1_distance(const NetworkProblem &other) const;
-    /// max |u - v| over the Legendre modes and the vertex.
-    double max_mode_difference(const NetworkProblem &other) const;
+    const NetworkState &state() const { return u; }
 
-    /// The state of a checkpoint (time, steps, last time step, far-end
-    /// inflow, the modes of every edge and the vertex value), written and
-    /// read by the same calls (ByteWriter/ByteReader).
-    template <typename Archive>
-    void
-    checkpoint_io(Archive &ar)
+    /// The mass balance of a run: R = (mass(t) - mass(0) - far-end inflow) /
+    /// ||u(0)||_L1 after every step; its largest |R| (the drift) and its
+    /// largest change in one step (the conservation error of a step).
+    struct MassBalance
     {
-      ar.io(t);
-      ar.io(inflow);
-      ar.io(dt_last);
-      ar.io(steps);
-      ar.io(u.vertex);
-      for (auto &e : u.edges)
-        {
-          std::vector<double> modes(e.begin(), e.end());
-          ar.io(modes);
-          if (modes.size() != e.size())
-            throw RunError("the checkpoint's network has other edge sizes");
-          std::copy(modes.begin(), modes.end(), e.begin());
-        }
+      double mass0 = 0, scale = 1, last = 0, max_residual = 0, max_step = 0;
+    };
+
+    const MassBalance &
+    mass_balance() const
+    {
+      return balance;
     }
 
     /// The solution at equally spaced points of every cell (both ends
@@ -201,37 +201,52 @@ namespace granular_dg::network
 
   private:
     struct EdgeDiscretisation;
+    class VertexData;
 
-    double evaluate(unsigned int edge, unsigned int cell, double xi, const NetworkState &s) const;
     /// evaluate() at xi = 0 (at_end false) or xi = 1 (at_end true)
     double end_value(unsigned int edge, unsigned int cell, bool at_end, const NetworkState &s) const;
     /// the vertex rate and the far-end inflow of the stage at src (the
-    /// coupling part of apply(); sets the vertex value the edges see)
+    /// coupling part of a stage; sets the vertex value the edges see)
     double couple(double t, const NetworkState &src) const;
     double far_end_inflow(double time, const NetworkState &s) const;
     void   post_stage(NetworkState &s, double stage_time);
+    /// Inadmissible unless s is finite (and, at degree 0, in the range of
+    /// the step).
+    void   post_stage_checks(const NetworkState &s, double stage_time);
     /// Degree 0: the range [min, max] of the cell averages, the vertex value
     /// and the far-end Dirichlet data of the step from t to t + dt.
-    std::pair<double, double> range_of_step(double dt) const;
-    /// Degree 0: a StateFailure unless every cell average of s lies in the
+    std::pair<double, double> range_of_step(double t, double dt) const;
+    /// Degree 0: Inadmissible unless every cell average of s lies in the
     /// step's range (widened by the stage's vertex value).
     void check_maximum_principle(const NetworkState &s, double stage_time);
+    Inadmissible failure(double time, int edge, double x, double value,
+                         const std::string &reason) const;
+    double balance_residual() const;
+    void   write_profiles(const std::string &directory, unsigned int index, double t) const;
+    std::string write_vtu(const std::string &directory, unsigned int index, double t) const;
+    /// What a checkpoint holds (the modes of every edge, the vertex value,
+    /// the far-end inflow and the diagnostics), written and read alike.
+    template <typename Archive>
+    void
+    state_io(Archive &ar);
 
     Graph                 net;
     Discretisation        disc;
     std::vector<EdgeData> data;
+    std::optional<double> initial_vertex_value;
+    const ExactSolution  *exact;
+    std::string           scene;
     std::vector<std::unique_ptr<EdgeDiscretisation>> edge;
     std::unique_ptr<Junction>                        vertex;
-    class VertexData;
     std::shared_ptr<VertexData> vertex_data;
-    NetworkState               u;
+    NetworkState               u, last_good, benchmark_start;
     dg::SSPRK3<NetworkState>   rk3;
-    std::vector<Polynomials::Legendre> legendre;
-    double                     t = 0., inflow = 0., h_min = 0., dt_last = 0.;
+    double                     t = 0., inflow = 0., h_min = 0.;
+    MassBalance                balance;
+    double                     tv0 = 0, u00 = 0, tv_max = 0;
     /// the range of the current step (degree 0's maximum principle)
     std::pair<double, double>  bounds{-INFINITY, INFINITY};
-    unsigned long              steps = 0;
-    /// far-end inflow rate of each apply() call in the current step
+    /// far-end inflow rate of each stage in the current step
     mutable std::vector<double> stage_inflow;
     StepPhases                 *phases = nullptr;
   };
@@ -241,7 +256,7 @@ namespace granular_dg::network
   RunResult
   run_network(const Graph &graph, const std::vector<EdgeData> &data,
               const Discretisation &discretisation, std::optional<double> vertex_value,
-              const ExactSolution *exact, const CommonParameters &params, bool write_files,
+              const ExactSolution *exact, const RunParameters &params, bool write_files,
               const std::string &scene = "network");
 
   /// The study of Convergence/degrees x Convergence/cells (cells per unit
@@ -253,5 +268,5 @@ namespace granular_dg::network
   run_network_convergence(const Graph &graph, const std::vector<EdgeData> &data,
                           const Discretisation &discretisation,
                           std::optional<double> vertex_value, const ExactSolution &exact,
-                          const CommonParameters &params, const std::vector<double> &cfl);
+                          const RunParameters &params, const std::vector<double> &cfl);
 } // namespace granular_dg::network

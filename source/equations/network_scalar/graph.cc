@@ -1,8 +1,8 @@
 #include <deal.II/base/numbers.h>
 
 #include <granular_dg/base/errors.h>
-#include <granular_dg/network/graph.h>
-#include <granular_dg/network/junction.h>
+#include <granular_dg/equations/network_scalar/graph.h>
+#include <granular_dg/equations/network_scalar/junction.h>
 
 #include <algorithm>
 #include <cmath>
@@ -71,7 +71,7 @@ namespace granular_dg::network
       }
   }
 
-  Junction::Junction(const Graph &graph, const dg::NumericalFlux type, const double width)
+  Junction::Junction(const Graph &graph, const NumericalFlux type, const double width)
     : end_list(graph.vertex_ends())
     , type(type)
     , dx0(width)

@@ -1,12 +1,11 @@
 #pragma once
 
 #include <deal.II/base/function.h>
-#include <deal.II/base/polynomial.h>
 
 #include <string>
 #include <vector>
 
-namespace granular_dg
+namespace granular_dg::dg
 {
   /**
    * A 1D discrete solution read back from a modes-NNNN.csv file (written with
@@ -35,6 +34,5 @@ namespace granular_dg
     unsigned int               n_modes = 1;
     double                     file_time = 0;
     std::vector<double>        x_left, h, modes; ///< modes[(cell * n_comp + c) * n_modes + k]
-    std::vector<dealii::Polynomials::Polynomial<double>> basis;
   };
-} // namespace granular_dg
+} // namespace granular_dg::dg

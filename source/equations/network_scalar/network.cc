@@ -1,21 +1,19 @@
-#include <deal.II/base/polynomial.h>
 #include <deal.II/base/quadrature_lib.h>
 #include <deal.II/fe/fe_dgq.h>
 #include <deal.II/grid/grid_generator.h>
 
 #include <granular_dg/base/errors.h>
 #include <granular_dg/base/output.h>
-#include <granular_dg/network/network.h>
+#include <granular_dg/dg/make_operator.h>
+#include <granular_dg/dg/solution_transfer.h>
+#include <granular_dg/equations/network_scalar/network.h>
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <optional>
 
 namespace granular_dg::network
 {
-  // ---------------------------------------------------------------- state
-
   void
   NetworkState::reinit(const NetworkState &other)
   {
@@ -24,32 +22,6 @@ namespace granular_dg::network
       edges[k].reinit(other.edges[k]);
     vertex = 0.;
   }
-
-  void
-  NetworkState::equ(const double a, const NetworkState &x)
-  {
-    for (unsigned int k = 0; k < edges.size(); ++k)
-      edges[k].equ(a, x.edges[k]);
-    vertex = dg::rounded_product(a, x.vertex);
-  }
-
-  void
-  NetworkState::add(const double a, const NetworkState &x)
-  {
-    for (unsigned int k = 0; k < edges.size(); ++k)
-      edges[k].add(a, x.edges[k]);
-    vertex = vertex + dg::rounded_product(a, x.vertex);
-  }
-
-  void
-  NetworkState::sadd(const double s, const double a, const NetworkState &x)
-  {
-    for (unsigned int k = 0; k < edges.size(); ++k)
-      edges[k].sadd(s, a, x.edges[k]);
-    vertex = dg::rounded_product(s, vertex) + dg::rounded_product(a, x.vertex);
-  }
-
-  // ------------------------------------------------------------- problem
 
   /// The value the vertex faces of the edges see (their Dirichlet data).
   class NetworkProblem::VertexData : public Function<1>
@@ -65,12 +37,13 @@ namespace granular_dg::network
 
   struct NetworkProblem::EdgeDiscretisation
   {
-    Triangulation<1>             tria;
-    std::unique_ptr<FESystem<1>> fe;
-    DoFHandler<1>                dof_handler;
-    MappingQ1<1>                 mapping;
-    std::unique_ptr<EdgeOperator> op;
-    std::unique_ptr<EdgeLimiter>  limiter;
+    Triangulation<1>                  tria;
+    std::unique_ptr<FESystem<1>>      fe;
+    DoFHandler<1>                     dof_handler;
+    MappingQ1<1>                      mapping;
+    std::unique_ptr<dg::Operator<1>>  op;
+    std::unique_ptr<EdgeLimiter>      limiter;
+    dg::CellQuadrature<1>             quadrature;
     /// layout cell numbers in the order of increasing x
     std::vector<unsigned int> order;
     double                    h = 0;
@@ -92,19 +65,20 @@ namespace granular_dg::network
     /// until two levels agree to round-off, so a jump inside a cell is
     /// located to machine precision (exact cell averages, (4.11)).
     void
-    integrate_moments(const Function<1> &g, const std::vector<Polynomials::Legendre> &L,
+    integrate_moments(const Function<1> &g, const unsigned int n_modes,
                       const QGauss<1> &quad, const double x0, const double h, const double a,
                       const double b, std::vector<double> &result, const unsigned int depth)
     {
       auto moments = [&](const double lo, const double hi) {
-        std::vector<double> m(L.size(), 0.);
+        std::vector<double> m(n_modes, 0.);
         for (unsigned int q = 0; q < quad.size(); ++q)
           {
             const double x = lo + (hi - lo) * quad.point(q)[0];
             const double w = (hi - lo) * quad.weight(q);
             const double v = g.value(Point<1>(x));
-            for (unsigned int k = 0; k < L.size(); ++k)
-              m[k] += w * v * L[k].value((x - x0) / h);
+            const auto   L = dg::legendre_values(n_modes, (x - x0) / h);
+            for (unsigned int k = 0; k < n_modes; ++k)
+              m[k] += w * v * L[k];
           }
         return m;
       };
@@ -113,7 +87,7 @@ namespace granular_dg::network
       auto         halves = moments(a, mid);
       const auto   right  = moments(mid, b);
       double       diff = 0, size = 0;
-      for (unsigned int k = 0; k < L.size(); ++k)
+      for (unsigned int k = 0; k < n_modes; ++k)
         {
           halves[k] += right[k];
           diff = std::max(diff, std::abs(halves[k] - whole[k]));
@@ -121,12 +95,12 @@ namespace granular_dg::network
         }
       if (diff <= 1e-15 * std::max(b - a, size) || depth >= 55)
         {
-          for (unsigned int k = 0; k < L.size(); ++k)
+          for (unsigned int k = 0; k < n_modes; ++k)
             result[k] += halves[k];
           return;
         }
-      integrate_moments(g, L, quad, x0, h, a, mid, result, depth + 1);
-      integrate_moments(g, L, quad, x0, h, mid, b, result, depth + 1);
+      integrate_moments(g, n_modes, quad, x0, h, a, mid, result, depth + 1);
+      integrate_moments(g, n_modes, quad, x0, h, mid, b, result, depth + 1);
     }
 
     /// whether every entry of v is finite (without a branch per entry)
@@ -138,13 +112,42 @@ namespace granular_dg::network
         ok &= std::isfinite(x);
       return ok;
     }
+
+    /// The boundary conditions of an edge: Dirichlet with the vertex value
+    /// at its vertex ends, the far-end data or outflow at the other.
+    dg::BoundaryMap<1>
+    edge_boundary(const Edge &e, const EdgeData &d, const std::shared_ptr<Function<1>> &vertex)
+    {
+      dg::BoundaryMap<1> boundary;
+      for (const types::boundary_id b : {types::boundary_id(0), types::boundary_id(1)})
+        {
+          dg::BoundaryCondition<1> bc;
+          if (e.vertex_at(b))
+            {
+              bc.kind = dg::BoundaryKind::dirichlet;
+              bc.data = vertex;
+            }
+          else if (e.far_end == FarEnd::dirichlet)
+            {
+              bc.kind = dg::BoundaryKind::dirichlet;
+              bc.data = d.far_end;
+            }
+          boundary[b] = bc;
+        }
+      return boundary;
+    }
   } // namespace
 
   NetworkProblem::NetworkProblem(const Graph &graph, const Discretisation &discretisation,
-                                 std::vector<EdgeData> edge_data)
+                                 std::vector<EdgeData> edge_data,
+                                 const std::optional<double> vertex_value,
+                                 const ExactSolution *exact, const std::string &scene)
     : net(graph)
     , disc(discretisation)
     , data(std::move(edge_data))
+    , initial_vertex_value(vertex_value)
+    , exact(exact)
+    , scene(scene)
     , vertex_data(std::make_shared<VertexData>())
   {
     AssertThrow(data.size() == net.edges.size(), ExcMessage("one EdgeData per edge"));
@@ -163,27 +166,13 @@ namespace granular_dg::network
         ed->dof_handler.reinit(ed->tria);
         ed->dof_handler.distribute_dofs(*ed->fe);
 
-        dg::BoundaryMap<1> boundary;
-        for (const types::boundary_id b : {types::boundary_id(0), types::boundary_id(1)})
-          {
-            dg::BoundaryCondition<1> bc;
-            if (e.vertex_at(b))
-              {
-                bc.kind = dg::BoundaryKind::dirichlet;
-                bc.data = vertex_data;
-              }
-            else if (e.far_end == FarEnd::dirichlet)
-              {
-                bc.kind = dg::BoundaryKind::dirichlet;
-                bc.data = data[k].far_end;
-              }
-            boundary[b] = bc;
-          }
-        const System system(e.flux);
-        ed->op = std::make_unique<EdgeOperator>(system, disc.flux, boundary);
+        const auto   boundary = edge_boundary(e, data[k], vertex_data);
+        const System system(e.flux, disc.flux);
+        ed->op = dg::make_operator<1>(disc.engine, system, boundary);
         ed->op->reinit(ed->mapping, ed->dof_handler);
         ed->limiter = std::make_unique<EdgeLimiter>(system, disc.limiter, disc.tvb_M, boundary);
         ed->limiter->reinit(ed->dof_handler);
+        ed->quadrature.reinit(ed->layout());
 
         const auto &layout = ed->layout();
         for (unsigned int c = 0; c < layout.n_owned(); ++c)
@@ -202,8 +191,6 @@ namespace granular_dg::network
     u.edges.resize(edge.size());
     for (unsigned int k = 0; k < edge.size(); ++k)
       edge[k]->op->initialize_vector(u.edges[k]);
-    for (unsigned int m = 0; m <= disc.degree; ++m)
-      legendre.emplace_back(m);
   }
 
   NetworkProblem::~NetworkProblem() = default;
@@ -234,15 +221,35 @@ namespace granular_dg::network
     return n;
   }
 
-  double
-  NetworkProblem::evaluate(const unsigned int k, const unsigned int c, const double xi,
-                           const NetworkState &s) const
+  EvolutionInfo
+  NetworkProblem::info() const
   {
-    const auto &layout = edge[k]->layout();
-    double      value  = 0;
-    for (unsigned int m = 0; m <= disc.degree; ++m)
-      value += s.edges[k](layout.index(c, 0, m)) * legendre[m].value(xi);
-    return value;
+    EvolutionInfo i;
+    i.scene    = scene;
+    i.physics  = System::name;
+    i.dim      = 1;
+    i.degree   = disc.degree;
+    i.n_cells  = n_cells();
+    i.n_dofs   = n_dofs();
+    i.h_min    = h_min;
+    i.n_stages = n_stages();
+    i.snapshot_files = "solution.pvd, profile-NNNN-edge-K.csv";
+    const std::string integrator = n_stages() == 1 ? "forward_euler" : "ssprk3";
+    i.description = std::to_string(net.edges.size()) + " edges, " +
+                    std::to_string(vertex->ends().size()) + " vertex ends, vertex width " +
+                    format_number(vertex->width()) + ", " + std::to_string(i.n_cells) +
+                    " cells, " + std::to_string(i.n_dofs) + " DoFs, degree " +
+                    std::to_string(disc.degree) + ", " + integrator;
+    i.method.add("engine", edge.front()->op->engine_name());
+    i.method.add("numerical_flux", numerical_flux_names.name(disc.flux));
+    i.method.add("limiter", disc.limiter_name);
+    i.method.add("scheme", integrator);
+    i.method.add("n_edges", static_cast<long long>(net.edges.size()));
+    const unsigned int points = disc.profile_points > 0 ? disc.profile_points :
+                                                          std::max(2u, disc.degree + 1);
+    i.bytes_per_snapshot = i.n_cells * points * (disc.write_vtu ? 60. : 0.) +
+                           i.n_cells * points * 40.;
+    return i;
   }
 
   double
@@ -257,10 +264,9 @@ namespace granular_dg::network
     return value;
   }
 
-  void
-  NetworkProblem::initialize(const std::optional<double> vertex_value)
+  double
+  NetworkProblem::initialize()
   {
-    const auto     &L = legendre;
     const QGauss<1> quad(disc.degree + 3);
     for (unsigned int k = 0; k < edge.size(); ++k)
       {
@@ -269,7 +275,7 @@ namespace granular_dg::network
         for (const unsigned int c : edge[k]->order)
           {
             const double        x0 = edge[k]->left(c), h = layout.extent(c, 0);
-            std::vector<double> moments(L.size(), 0.);
+            std::vector<double> moments(disc.degree + 1, 0.);
             // split at the known jumps first, then refine adaptively
             std::vector<double> pieces{x0, x0 + h};
             for (const double b : data[k].initial_breakpoints)
@@ -277,22 +283,56 @@ namespace granular_dg::network
                 pieces.push_back(b);
             std::sort(pieces.begin(), pieces.end());
             for (unsigned int p = 0; p + 1 < pieces.size(); ++p)
-              integrate_moments(*data[k].initial, L, quad, x0, h, pieces[p], pieces[p + 1],
-                                moments, 0);
-            for (unsigned int m = 0; m < L.size(); ++m)
+              integrate_moments(*data[k].initial, disc.degree + 1, quad, x0, h, pieces[p],
+                                pieces[p + 1], moments, 0);
+            for (unsigned int m = 0; m <= disc.degree; ++m)
               u.edges[k](layout.index(c, 0, m)) = moments[m] / h;
           }
       }
     // the limiter sees the vertex value as the neighbour of the edge ends
-    u.vertex          = vertex_value ? *vertex_value : vertex->balance(vertex_traces(u), 0.);
+    const auto &given = initial_vertex_value;
+    u.vertex          = given ? *given : vertex->balance(vertex_traces(u), 0.);
     vertex_data->u0   = u.vertex;
     for (unsigned int k = 0; k < edge.size(); ++k)
       edge[k]->limiter->apply(u.edges[k], 0.);
-    if (!vertex_value || vertex->width() == 0)
+    if (!given || vertex->width() == 0)
       u.vertex = vertex->balance(vertex_traces(u), 0.);
     t      = 0.;
     inflow = 0.;
-    steps  = 0;
+    balance.mass0 = mass();
+    balance.scale = l1_norm() > 0 ? l1_norm() : 1.;
+    tv0 = tv_max = total_variation();
+    u00          = u.vertex;
+    return 0.;
+  }
+
+  Inadmissible
+  NetworkProblem::failure(const double time, const int k, const double x, const double value,
+                          const std::string &reason) const
+  {
+    Inadmissible f;
+    f.time   = time;
+    f.where  = k < 0 ? "vertex" : net.edges[k].label + " x = " + format_number(x);
+    f.names  = {"u"};
+    f.state  = {value};
+    f.reason = reason;
+    return f;
+  }
+
+  void
+  NetworkProblem::check_initial_state(const double time)
+  {
+    NetworkState s = u;
+    bounds         = {-INFINITY, INFINITY};
+    try
+      {
+        post_stage_checks(s, time);
+      }
+    catch (Inadmissible &f)
+      {
+        f.initial = true;
+        throw;
+      }
   }
 
   std::vector<double>
@@ -344,38 +384,21 @@ namespace granular_dg::network
   }
 
   void
-  NetworkProblem::apply(const double time, const NetworkState &src, NetworkState &dst) const
-  {
-    std::optional<StepPhases::Scope> coupling(std::in_place, phases, StepPhases::coupling);
-    const double                     rate = couple(time, src);
-    coupling.reset();
-    {
-      StepPhases::Scope scope(phases, StepPhases::operator_apply);
-      for (unsigned int k = 0; k < edge.size(); ++k)
-        edge[k]->op->apply(time, src.edges[k], dst.edges[k]);
-    }
-    dst.vertex = rate;
-  }
-
-  void
   NetworkProblem::apply_stage(const double time, const NetworkState &src, NetworkState &dst,
                               const dg::StageUpdate<NetworkState> &s) const
   {
-    std::optional<StepPhases::Scope> coupling(std::in_place, phases, StepPhases::coupling);
-    const double                     rate = couple(time, src);
-    coupling.reset();
-    {
-      StepPhases::Scope scope(phases, StepPhases::operator_apply);
-      for (unsigned int k = 0; k < edge.size(); ++k)
-        edge[k]->op->apply_stage(
-          time, src.edges[k], dst.edges[k],
-          dg::StageUpdate<>{s.old ? &s.old->edges[k] : nullptr, s.alpha, s.beta, s.gamma});
-    }
+    // the vertex coupling is part of the right-hand side of the network
+    StepPhases::Scope scope(phases, StepPhases::operator_apply);
+    const double      rate = couple(time, src);
+    for (unsigned int k = 0; k < edge.size(); ++k)
+      edge[k]->op->apply_stage(
+        time, src.edges[k], dst.edges[k],
+        dg::StageUpdate<>{s.old ? &s.old->edges[k] : nullptr, s.alpha, s.beta, s.gamma});
     dst.vertex = dg::stage_value(s, src.vertex, s.old ? s.old->vertex : 0., rate);
   }
 
   std::pair<double, double>
-  NetworkProblem::range_of_step(const double dt) const
+  NetworkProblem::range_of_step(const double time, const double dt) const
   {
     double lo = u.vertex, hi = u.vertex;
     for (const auto &e : u.edges)
@@ -387,9 +410,9 @@ namespace granular_dg::network
     for (unsigned int k = 0; k < net.edges.size(); ++k)
       if (net.edges[k].direction != Direction::loop &&
           net.edges[k].far_end == FarEnd::dirichlet)
-        for (const double time : {t, t + 0.5 * dt, t + dt})
+        for (const double s : {time, time + 0.5 * dt, time + dt})
           {
-            data[k].far_end->set_time(time);
+            data[k].far_end->set_time(s);
             const double g =
               data[k].far_end->value(Point<1>(net.edges[k].direction == Direction::in ?
                                                 0. :
@@ -414,14 +437,14 @@ namespace granular_dg::network
         {
           const double v = s.edges[k](edge[k]->layout().index(c, 0, 0));
           if (v < lo - tol || v > hi + tol)
-            throw StateFailure{stage_time, int(k),
-                               edge[k]->left(c) + 0.5 * edge[k]->layout().extent(c, 0), v,
-                               "maximum principle violated: u outside [" + format_number(lo) +
-                                 ", " + format_number(hi) +
-                                 "], the range of the cell averages, vertex value and "
-                                 "far-end data at the start of the step (degree 0 is monotone "
-                                 "only up to its CFL limit; CFL number " +
-                                 format_number(disc.cfl) + ")"};
+            throw failure(stage_time, int(k),
+                          edge[k]->left(c) + 0.5 * edge[k]->layout().extent(c, 0), v,
+                          "maximum principle violated: u outside [" + format_number(lo) +
+                            ", " + format_number(hi) +
+                            "], the range of the cell averages, vertex value and "
+                            "far-end data at the start of the step (degree 0 is monotone "
+                            "only up to its CFL limit; CFL number " +
+                            format_number(disc.cfl) + ")");
         }
   }
 
@@ -438,9 +461,14 @@ namespace granular_dg::network
         s.vertex = vertex->balance(vertex_traces(s), stage_time);
     }
     StepPhases::Scope scope(phases, StepPhases::admissibility);
+    post_stage_checks(s, stage_time);
+  }
 
+  void
+  NetworkProblem::post_stage_checks(const NetworkState &s, const double stage_time)
+  {
     if (!std::isfinite(s.vertex))
-      throw StateFailure{stage_time, -1, 0., s.vertex, "vertex value is not finite"};
+      throw failure(stage_time, -1, 0., s.vertex, "vertex value is not finite");
     // (non-finite values fail this test too, and are reported as such below)
     if (disc.degree == 0 && std::isfinite(bounds.first) && std::isfinite(bounds.second))
       {
@@ -459,39 +487,41 @@ namespace granular_dg::network
           for (const unsigned int c : edge[k]->order)
             for (unsigned int m = 0; m <= disc.degree; ++m)
               if (!std::isfinite(s.edges[k](layout.index(c, 0, m))))
-                throw StateFailure{stage_time, int(k),
-                                   edge[k]->left(c) + 0.5 * layout.extent(c, 0),
-                                   s.edges[k](layout.index(c, 0, 0)),
-                                   "state is not finite"};
+                throw failure(stage_time, int(k), edge[k]->left(c) + 0.5 * layout.extent(c, 0),
+                              s.edges[k](layout.index(c, 0, 0)), "state is not finite");
         }
   }
 
   double
-  NetworkProblem::time_step() const
+  NetworkProblem::time_step(const double time)
   {
     double speed_over_h = 0;
     for (unsigned int k = 0; k < edge.size(); ++k)
-      speed_over_h = std::max(speed_over_h, edge[k]->op->max_speed_over_h(u.edges[k]));
+      speed_over_h = std::max(speed_over_h, edge[k]->op->max_speed_over_h(u.edges[k], 0.));
     for (const auto &end : vertex->ends())
       speed_over_h = std::max(speed_over_h,
                               std::abs(net.edges[end.edge].flux.derivative(u.vertex)) /
                                 edge[end.edge]->h);
-    return disc.cfl / speed_over_h;
+    const double dt = disc.cfl / speed_over_h;
+    if (!(std::isfinite(dt) && dt > 0))
+      throw RunError("time step is " + format_number(dt) + " at t = " + format_number(time) +
+                     " (all characteristic speeds vanish or are not finite)");
+    return dt;
   }
 
   void
-  NetworkProblem::step(const double dt)
+  NetworkProblem::advance(const double time, const double dt)
   {
-    const double before = phases ? phases->total() : 0.;
-    const auto   start  = std::chrono::steady_clock::now();
+    t = time;
     stage_inflow.clear();
     if (disc.degree == 0)
-      bounds = range_of_step(dt);
+      bounds = range_of_step(t, dt);
     if (n_stages() == 1)
       {
-        // u += dt R(t, u), in place
-        apply_stage(t, u, u, dg::StageUpdate<NetworkState>{nullptr, 1., 0., dt});
-        post_stage(u, t + dt);
+        dg::ForwardEuler<NetworkState>().step(*this, u, t, dt,
+                                              [&](NetworkState &s, double stage_time, double) {
+                                                post_stage(s, stage_time);
+                                              });
         inflow += dt * stage_inflow[0];
       }
     else
@@ -503,13 +533,34 @@ namespace granular_dg::network
         inflow += dt * (stage_inflow[0] / 6. + stage_inflow[1] / 6. + 2. * stage_inflow[2] / 3.);
       }
     t += dt;
-    dt_last = dt;
-    ++steps;
-    // what is neither operator, coupling nor post-stage work: the vector updates
-    if (phases)
-      phases->seconds[StepPhases::vector_updates] +=
-        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() -
-        (phases->total() - before);
+  }
+
+  double
+  NetworkProblem::balance_residual() const
+  {
+    return (mass() - balance.mass0 - inflow) / balance.scale;
+  }
+
+  void
+  NetworkProblem::end_of_step(const double, const double, const unsigned long)
+  {
+    const double r       = balance_residual();
+    balance.max_residual = std::max(balance.max_residual, std::abs(r));
+    balance.max_step     = std::max(balance.max_step, std::abs(r - balance.last));
+    balance.last         = r;
+    tv_max               = std::max(tv_max, total_variation());
+  }
+
+  void
+  NetworkProblem::store(const Slot slot)
+  {
+    (slot == Slot::last_good ? last_good : benchmark_start) = u;
+  }
+
+  void
+  NetworkProblem::restore(const Slot slot)
+  {
+    u = slot == Slot::last_good ? last_good : benchmark_start;
   }
 
   double
@@ -517,7 +568,7 @@ namespace granular_dg::network
   {
     double m = vertex->width() * u.vertex;
     for (unsigned int k = 0; k < edge.size(); ++k)
-      m += edge[k]->op->integrals(u.edges[k])[0];
+      m += edge[k]->quadrature.integrals(u.edges[k])[0];
     return m;
   }
 
@@ -554,7 +605,7 @@ namespace granular_dg::network
       }
     for (const auto &end : vertex->ends())
       {
-        const auto &e = *edge[end.edge];
+        const auto        &e = *edge[end.edge];
         const unsigned int c = end.incoming ? e.last() : e.first();
         tv += std::abs(u.vertex - u.edges[end.edge](e.layout().index(c, 0, 0)));
       }
@@ -562,16 +613,16 @@ namespace granular_dg::network
   }
 
   NetworkErrors
-  NetworkProblem::errors(const ExactSolution &exact) const
+  NetworkProblem::errors(const ExactSolution &solution, const double time) const
   {
-    NetworkErrors    e;
-    const QGauss<1>  quad(2 * disc.degree + 8);
-    double           l2 = 0;
+    NetworkErrors   e;
+    const QGauss<1> quad(2 * disc.degree + 8);
+    double          l2 = 0;
     e.l1_per_edge.assign(edge.size(), 0.);
     for (unsigned int k = 0; k < edge.size(); ++k)
       {
         const auto &layout = edge[k]->layout();
-        const auto  breaks = exact.breakpoints(k, t);
+        const auto  breaks = solution.breakpoints(k, time);
         for (const unsigned int c : edge[k]->order)
           {
             const double        x0 = edge[k]->left(c), h = layout.extent(c, 0);
@@ -585,7 +636,8 @@ namespace granular_dg::network
                 {
                   const double w = (pieces[p + 1] - pieces[p]) * quad.weight(q);
                   const double x = pieces[p] + (pieces[p + 1] - pieces[p]) * quad.point(q)[0];
-                  const double d = std::abs(evaluate(k, c, (x - x0) / h, u) - exact.value(k, x, t));
+                  const double d = std::abs(layout.value(u.edges[k], c, 0, (x - x0) / h) -
+                                            solution.value(k, x, time));
                   e.l1_per_edge[k] += w * d;
                   l2 += w * d * d;
                   e.linf = std::max(e.linf, d);
@@ -594,7 +646,7 @@ namespace granular_dg::network
       }
     for (const double l1 : e.l1_per_edge)
       e.l1_edges += l1;
-    const double d0 = std::abs(u.vertex - exact.vertex_value(t));
+    const double d0 = std::abs(u.vertex - solution.vertex_value(time));
     e.l1_vertex     = vertex->width() * d0;
     l2 += vertex->width() * d0 * d0;
     if (vertex->width() > 0)
@@ -615,20 +667,11 @@ namespace granular_dg::network
         for (const unsigned int c : edge[k]->order)
           for (unsigned int q = 0; q < quad.size(); ++q)
             sum += quad.weight(q) * layout.extent(c, 0) *
-                   std::abs(evaluate(k, c, quad.point(q)[0], u) -
-                            other.evaluate(k, c, quad.point(q)[0], other.u));
+                   std::abs(layout.value(u.edges[k], c, 0, quad.point(q)[0]) -
+                            other.edge[k]->layout().value(other.u.edges[k], c, 0,
+                                                          quad.point(q)[0]));
       }
     return sum;
-  }
-
-  double
-  NetworkProblem::max_mode_difference(const NetworkProblem &other) const
-  {
-    double d = std::abs(u.vertex - other.u.vertex);
-    for (unsigned int k = 0; k < edge.size(); ++k)
-      for (unsigned int i = 0; i < u.edges[k].locally_owned_size(); ++i)
-        d = std::max(d, std::abs(u.edges[k].local_element(i) - other.u.edges[k].local_element(i)));
-    return d;
   }
 
   std::vector<std::vector<std::pair<double, double>>>
@@ -643,9 +686,108 @@ namespace granular_dg::network
             {
               const double xi = points_per_cell == 1 ? 0.5 : j / double(points_per_cell - 1);
               out[k].emplace_back(edge[k]->left(c) + xi * layout.extent(c, 0),
-                                  evaluate(k, c, xi, u));
+                                  layout.value(u.edges[k], c, 0, xi));
             }
       }
     return out;
+  }
+
+  std::vector<std::string>
+  NetworkProblem::timeseries_names() const
+  {
+    std::vector<std::string> header{"mass",          "mass_balance_residual", "boundary_inflow",
+                                    "vertex_value",  "total_variation",       "rh_residual"};
+    if (exact)
+      for (const char *n : {"vertex_exact", "l1_error", "l1_error_vertex"})
+        header.emplace_back(n);
+    return header;
+  }
+
+  std::string
+  NetworkProblem::timeseries_comment() const
+  {
+    return "mass_balance_residual = |mass - mass(0) - boundary_inflow| / ||u(0)||_L1; "
+           "rh_residual = sum_in F - sum_out F at the vertex";
+  }
+
+  std::vector<double>
+  NetworkProblem::timeseries_values(const double time)
+  {
+    std::vector<double> row{mass(),          std::abs(balance_residual()), inflow,
+                            u.vertex,        total_variation(),            rh_residual()};
+    if (exact)
+      {
+        const auto e = errors(*exact, time);
+        row.insert(row.end(), {exact->vertex_value(time), e.l1, e.l1_vertex});
+      }
+    return row;
+  }
+
+  template <typename Archive>
+  void
+  NetworkProblem::state_io(Archive &ar)
+  {
+    ar.io(inflow);
+    ar.io(u.vertex);
+    for (auto &e : u.edges)
+      {
+        std::vector<double> modes(e.begin(), e.end());
+        ar.io(modes);
+        if (modes.size() != e.size())
+          throw RunError("the checkpoint's network has other edge sizes");
+        std::copy(modes.begin(), modes.end(), e.begin());
+      }
+    for (double *x : {&balance.mass0, &balance.scale, &balance.last, &balance.max_residual,
+                      &balance.max_step, &tv0, &u00, &tv_max})
+      ar.io(*x);
+  }
+
+  void
+  NetworkProblem::save(ByteWriter &w)
+  {
+    state_io(w);
+  }
+
+  void
+  NetworkProblem::load(ByteReader &r)
+  {
+    state_io(r);
+  }
+
+  void
+  NetworkProblem::finish(const double time, RunResult &result, const bool)
+  {
+    if (result.status != "completed")
+      return;
+    JsonObject &d = result.diagnostics;
+    d.add("n_edges", static_cast<long long>(net.edges.size()));
+    d.add("n_vertex_ends", static_cast<long long>(vertex->ends().size()));
+    d.add("vertex_width", vertex->width());
+    d.add("integrator", n_stages() == 1 ? "forward_euler" : "ssprk3");
+    d.add("cfl", disc.cfl);
+    d.add("mass_initial", balance.mass0);
+    d.add("mass_final", mass());
+    d.add("boundary_inflow", inflow);
+    d.add("mass_balance_residual_max", balance.max_residual);
+    d.add("mass_step_residual_max", balance.max_step);
+    d.add("vertex_value_initial", u00);
+    d.add("vertex_value_final", u.vertex);
+    d.add("rh_residual_final", rh_residual());
+    d.add("total_variation_initial", tv0);
+    d.add("total_variation_final", total_variation());
+    d.add("total_variation_max", tv_max);
+    d.add("cpu_time_loop_s", result.time_loop_cpu_s);
+    d.add("dof_updates_per_cpu_s", result.dof_updates_per_cpu_s_per_rank);
+    if (!exact)
+      return;
+    const auto e = errors(*exact, time);
+    result.errors.push_back({{e.l1, e.l2, e.linf}});
+    result.l2_error = e.l2;
+    d.add("exact_solution", exact->name());
+    d.add("vertex_exact_final", exact->vertex_value(time));
+    d.add("l1_error", e.l1);
+    d.add("l1_error_edges", e.l1_edges);
+    d.add("l1_error_vertex", e.l1_vertex);
+    d.add("linf_error", e.linf);
   }
 } // namespace granular_dg::network

@@ -1,0 +1,106 @@
+#pragma once
+
+#include <deal.II/base/mpi.h>
+#include <deal.II/base/point.h>
+#include <deal.II/dofs/dof_handler.h>
+#include <deal.II/fe/mapping.h>
+#include <deal.II/lac/la_parallel_vector.h>
+
+#include <granular_dg/dg/time_integrator.h>
+
+#include <string>
+#include <vector>
+
+namespace granular_dg::dg
+{
+  using namespace dealii;
+  using VectorType = LinearAlgebra::distributed::Vector<double>;
+
+  /// Where and why a state left the admissible set (a point of an operator's
+  /// quadrature).
+  struct AdmissibilityReport
+  {
+    bool                ok = true;
+    Point<3>            position; ///< first inadmissible quadrature point
+    std::vector<double> state;
+    std::string         reason;
+  };
+
+  /// Collective: every rank gets the report of the lowest rank whose
+  /// report is not ok (rank 0 prints it), or its own when all are ok.
+  AdmissibilityReport
+  first_failure(AdmissibilityReport report, MPI_Comm comm);
+
+  /// The operator behind a run: MatrixFree's DGOperator (any dim, MPI), or
+  /// the lean LineOperator (1D, serial); automatic takes the line engine in
+  /// serial 1D.
+  enum class Engine
+  {
+    automatic,
+    matrix_free,
+    line
+  };
+
+  /**
+   * What the solver needs of a DG operator, whichever engine computes it:
+   * the right-hand side M^{-1} R(t, u), a fused Runge-Kutta stage, the
+   * largest wave speed over the cell size (the CFL step) and the scan of the
+   * admissible set. Both engines discretise alike (modal FE_DGQLegendre,
+   * p + 2 Gauss points, the Physics' numerical flux and boundary states);
+   * projection, integrals and errors are shared (CellQuadrature).
+   */
+  template <int dim>
+  class Operator
+  {
+  public:
+    virtual ~Operator() = default;
+
+    virtual void
+    reinit(const Mapping<dim> &mapping, const DoFHandler<dim> &dof_handler) = 0;
+
+    virtual void
+    initialize_vector(VectorType &vector) const = 0;
+
+    /// dst = M^{-1} R(t, src)
+    virtual void
+    apply(double time, const VectorType &src, VectorType &dst) const = 0;
+
+    /// One Runge-Kutta stage (StageUpdate; dst may be src or s.old):
+    /// bit for bit apply() followed by deal.II's vector operations. This
+    /// default does exactly that; an engine may fuse it into its cell loop.
+    virtual void
+    apply_stage(const double time, const VectorType &src, VectorType &dst,
+                const StageUpdate<> &s) const
+    {
+      if (rate.size() != src.size())
+        rate.reinit(src);
+      apply(time, src, rate);
+      const unsigned int n = src.locally_owned_size();
+      const double      *u = src.begin(), *k = rate.begin();
+      double            *out = dst.begin();
+      if (s.old)
+        for (unsigned int i = 0; i < n; ++i)
+          out[i] = stage_value(s.alpha, s.beta, s.gamma, u[i], s.old->begin()[i], k[i]);
+      else
+        for (unsigned int i = 0; i < n; ++i)
+          out[i] = stage_value(s.gamma, u[i], k[i]);
+    }
+
+    /// max over the quadrature points of max(lambda(U), min_speed) *
+    /// sum_d |row_d(J^{-1})| (collective): the stable step is CFL / this.
+    virtual double
+    max_speed_over_h(const VectorType &solution, double min_speed) const = 0;
+
+    /// The first inadmissible quadrature point (Physics::is_admissible /
+    /// admissibility_violation), collective (first_failure()).
+    virtual AdmissibilityReport
+    check_admissibility(const VectorType &solution) const = 0;
+
+    /// "matrix_free" or "line"
+    virtual std::string
+    engine_name() const = 0;
+
+  private:
+    mutable VectorType rate;
+  };
+} // namespace granular_dg::dg

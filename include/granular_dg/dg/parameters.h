@@ -1,0 +1,66 @@
+#pragma once
+
+#include <deal.II/base/parameter_handler.h>
+
+#include <granular_dg/base/run_parameters.h>
+#include <granular_dg/dg/limiter.h>
+#include <granular_dg/dg/operator.h>
+
+#include <string>
+
+namespace granular_dg::dg
+{
+  using namespace dealii;
+
+  /**
+   * The DG method of a run: degree, numerical flux (by the name the physics
+   * gives it), engine, CFL number, limiter, and the 1D output of the modal
+   * field (subsections Discretization, Time stepping, Limiter, Output).
+   * What the physics offers comes in as names: its numerical fluxes
+   * ("local_lax_friedrichs|impedance") and, if it has limiting variables of
+   * its own, their name in Limiter/scheme ("flux_variables").
+   */
+  struct DiscretizationParameters
+  {
+    unsigned int degree = 2;
+    std::string  flux   = "local_lax_friedrichs";
+    Engine       engine = Engine::automatic;
+    double       cfl    = 0.2;
+    bool         check_stability_limit = true;
+    LimiterType  limiter      = LimiterType::none;
+    std::string  limiter_name = "none";
+    double       tvb_M        = 0.;
+    unsigned int profile_points = 0;
+    bool         write_modes    = false;
+
+    static void
+    declare(ParameterHandler &prm, const std::string &fluxes,
+            const std::string &physics_variables = "");
+
+    /// Parse and check (the CFL number against the stability limit of every
+    /// degree the run or its convergence study uses).
+    void
+    parse(ParameterHandler &prm, const RunParameters &run,
+          const std::string &physics_variables = "");
+
+    /// The method of the i-th degree of a convergence study (its CFL number).
+    DiscretizationParameters
+    for_study(const RunParameters &run, unsigned int i) const;
+  };
+
+  /// The size of one snapshot of a DG field (the VTU and, in 1D, the CSV
+  /// profile) of n_cells cells of degree p with n_fields values per point:
+  /// what the refusal of snapshot counts that cannot be meant quotes.
+  double
+  snapshot_bytes(double n_cells, unsigned int degree, int dim, unsigned int n_fields,
+                 bool vtu);
+
+  /// The linear stability limit of the CFL number of SSP-RK3 with upwind DG
+  /// of degree p (1D Fourier analysis): 1.2563, 0.4095, 0.2097, 0.13, 0.0896.
+  double
+  ssprk3_cfl_limit(unsigned int degree);
+
+  /// An InputError naming parameter unless cfl <= ssprk3_cfl_limit(degree).
+  void
+  require_stable_cfl(double cfl, unsigned int degree, const std::string &parameter);
+} // namespace granular_dg::dg

@@ -1,0 +1,135 @@
+#pragma once
+
+#include <deal.II/dofs/dof_handler.h>
+#include <deal.II/fe/fe_system.h>
+#include <deal.II/fe/mapping_q1.h>
+
+#include <granular_dg/base/evolution.h>
+#include <granular_dg/base/run_parameters.h>
+#include <granular_dg/dg/cell_quadrature.h>
+#include <granular_dg/dg/limiter.h>
+#include <granular_dg/dg/operator.h>
+#include <granular_dg/dg/parameters.h>
+#include <granular_dg/dg/scene_data.h>
+#include <granular_dg/dg/time_integrator.h>
+
+#include <functional>
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace granular_dg::dg
+{
+  /**
+   * The DG discretisation of one scene as the TimeLoop drives it: the
+   * DoFHandler of FE_DGQLegendre on the scene's mesh, an Operator of the
+   * chosen engine, the limiter, SSP-RK3 and the scene's hooks, and the
+   * output of the modal field (VTU through DataOut, 1D profiles and modes).
+   * After every stage: the scene's post-stage hook, the limiter, the
+   * post-limiter hook, then the admissibility checks of the operator and of
+   * the scene.
+   */
+  template <int dim, typename Physics>
+  class Solver : public Evolution
+  {
+  public:
+    Solver(const SceneData<dim, Physics> &scene, const DiscretizationParameters &method,
+           const RunParameters &run, bool write_files);
+    ~Solver() override;
+
+    EvolutionInfo
+    info() const override;
+    double
+    initialize() override;
+    void
+    check_initial_state(double t) override;
+    double
+    time_step(double t) override;
+    void
+    advance(double t, double dt) override;
+    void
+    end_of_step(double t, double dt, unsigned long step) override;
+    void
+    store(Slot slot) override;
+    void
+    restore(Slot slot) override;
+    SnapshotFiles
+    write_snapshot(const std::string &directory, unsigned int index, double t) override;
+    std::vector<std::string>
+    timeseries_names() const override;
+    std::vector<double>
+    timeseries_values(double t) override;
+    void
+    save(ByteWriter &w) override;
+    void
+    load(ByteReader &r) override;
+    void
+    finish(double t, RunResult &result, bool write_files) override;
+    void
+    set_phases(StepPhases *p) override
+    {
+      phases = p;
+    }
+
+    /// The current state (the final one after a run).
+    const VectorType &
+    state() const
+    {
+      return solution;
+    }
+
+  private:
+    void
+    post_stage(VectorType &u, double stage_time, double weight);
+    Inadmissible
+    inadmissible(const AdmissibilityReport &report, double t, bool initial) const;
+    /// L1, L2, Linf per component against the exact solution at t
+    std::vector<std::array<double, 3>>
+    errors(double t) const;
+    double
+    energy() const;
+    std::string
+    write_vtu(const std::string &directory, unsigned int index, double t) const;
+    std::string
+    write_profile(const std::string &directory, unsigned int index, double t) const;
+    void
+    write_modes(const std::string &directory, unsigned int index, double t) const;
+
+    SceneData<dim, Physics>          scene;
+    const DiscretizationParameters   method;
+    const bool                       write_vtu_files;
+    const std::string                directory;
+    FESystem<dim>                    fe;
+    DoFHandler<dim>                  dof_handler;
+    MappingQ1<dim>                   mapping;
+    std::unique_ptr<Operator<dim>>   op;
+    ModalLimiter<dim, Physics>       limiter;
+    CellQuadrature<dim>              quadrature;
+    SSPRK3<>                         integrator;
+    SceneHooks<dim>                  no_hooks;
+    SceneHooks<dim>                 &hooks;
+    VectorType                       solution, last_good, benchmark_start;
+    unsigned int                     troubled = 0;
+    StepPhases                      *phases   = nullptr;
+  };
+
+  /// One run of a scene: a Solver driven by the TimeLoop. final_state, if
+  /// given, gets the state at the end.
+  template <int dim, typename Physics>
+  RunResult
+  run_simulation(const SceneData<dim, Physics> &scene, const RunParameters &run,
+                 const DiscretizationParameters &method, bool write_files = true,
+                 double dt_factor = 1., VectorType *final_state = nullptr);
+
+  /// The convergence study of Convergence/degrees x Convergence/cells: one run
+  /// per pair (the factory builds the mesh with that many cells per
+  /// direction), errors against the exact solution, EOC from the smallest
+  /// cell diameters, written to convergence.csv and convergence-rates.csv.
+  /// For degree p the time step is scaled with (h/h_0)^(max(1,(p+1)/3) - 1)
+  /// so that SSP-RK3's O(dt^3) error stays below the spatial O(h^(p+1)) one.
+  template <int dim, typename Physics>
+  void
+  run_convergence_study(
+    const std::function<SceneData<dim, Physics>(unsigned int)> &make_scene,
+    const RunParameters &run, const DiscretizationParameters &method);
+} // namespace granular_dg::dg

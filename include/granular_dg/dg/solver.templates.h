@@ -1,0 +1,609 @@
+#pragma once
+
+#include <deal.II/base/quadrature.h>
+#include <deal.II/base/utilities.h>
+#include <deal.II/fe/fe_dgq.h>
+#include <deal.II/fe/fe_values.h>
+#include <deal.II/grid/grid_tools.h>
+#include <deal.II/numerics/data_out.h>
+#include <deal.II/numerics/data_postprocessor.h>
+
+#include <granular_dg/base/errors.h>
+#include <granular_dg/base/time_loop.h>
+#include <granular_dg/dg/dg_operator.h>
+#include <granular_dg/dg/line_operator.h>
+#include <granular_dg/dg/make_operator.h>
+#include <granular_dg/dg/solution_transfer.h>
+#include <granular_dg/dg/solver.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <iomanip>
+#include <iostream>
+#include <sstream>
+
+namespace granular_dg::dg
+{
+  namespace internal
+  {
+    /// Derived quantities of the Physics (velocity, stress, ...) as VTU fields.
+    template <int dim, typename Physics>
+    class DerivedFields : public DataPostprocessor<dim>
+    {
+    public:
+      explicit DerivedFields(const Physics &physics)
+        : physics(physics)
+      {}
+
+      void
+      evaluate_vector_field(const DataPostprocessorInputs::Vector<dim> &inputs,
+                            std::vector<Vector<double>> &computed) const override
+      {
+        for (unsigned int q = 0; q < inputs.solution_values.size(); ++q)
+          {
+            Tensor<1, Physics::n_components> U;
+            for (unsigned int c = 0; c < Physics::n_components; ++c)
+              U[c] = inputs.solution_values[q][c];
+            const auto d = physics.derived(
+              U, physics.coefficients(inputs.template get_cell<dim>()->material_id()));
+            for (unsigned int i = 0; i < d.size(); ++i)
+              computed[q][i] = d[i];
+          }
+      }
+
+      std::vector<std::string>
+      get_names() const override
+      {
+        return Physics::derived_names();
+      }
+
+      UpdateFlags
+      get_needed_update_flags() const override
+      {
+        return update_values;
+      }
+
+    private:
+      const Physics physics;
+    };
+
+    /// The operator with its apply calls charged to the operator phase
+    /// (nothing when phases is null).
+    template <int dim>
+    struct TimedOperator
+    {
+      const Operator<dim> &op;
+      StepPhases *const   &phases;
+
+      void
+      apply_stage(const double t, const VectorType &src, VectorType &dst,
+                  const StageUpdate<> &s) const
+      {
+        StepPhases::Scope scope(phases, StepPhases::operator_apply);
+        op.apply_stage(t, src, dst, s);
+      }
+    };
+
+    inline std::string
+    snapshot_name(const std::string &prefix, const unsigned int index,
+                  const std::string &suffix)
+    {
+      return prefix + Utilities::int_to_string(index, 4) + suffix;
+    }
+  } // namespace internal
+
+  template <int dim, typename Physics>
+  Solver<dim, Physics>::Solver(const SceneData<dim, Physics> &scene_data,
+                               const DiscretizationParameters &method,
+                               const RunParameters &run, const bool write_files)
+    : scene(scene_data)
+    , method(method)
+    , write_vtu_files(run.write_vtu)
+    , directory(run.directory)
+    , fe(FE_DGQLegendre<dim>(method.degree), Physics::n_components)
+    , dof_handler(*scene_data.triangulation)
+    , op(make_operator<dim>(method.engine, scene_data.physics, scene_data.boundary))
+    , limiter(scene_data.physics, method.limiter, method.tvb_M, scene_data.boundary)
+    , hooks(scene_data.hooks ? *scene_data.hooks : no_hooks)
+  {
+    dof_handler.distribute_dofs(fe);
+    op->reinit(mapping, dof_handler);
+    op->initialize_vector(solution);
+    op->initialize_vector(last_good);
+    limiter.reinit(dof_handler, solution);
+    quadrature.reinit(limiter.layout());
+    hooks.set_resuming(run.resume && write_files);
+    hooks.initialize(dof_handler, mapping, limiter.layout());
+  }
+
+  template <int dim, typename Physics>
+  Solver<dim, Physics>::~Solver() = default;
+
+  template <int dim, typename Physics>
+  EvolutionInfo
+  Solver<dim, Physics>::info() const
+  {
+    EvolutionInfo i;
+    i.scene     = scene.scene;
+    i.physics   = Physics::name;
+    i.dim       = dim;
+    i.degree    = method.degree;
+    i.n_cells   = scene.triangulation->n_global_active_cells();
+    i.n_dofs    = dof_handler.n_dofs();
+    i.h_min     = GridTools::minimal_cell_diameter(*scene.triangulation);
+    i.n_stages  = SSPRK3<>::n_stages;
+    i.time_name = scene.time_name;
+    i.snapshot_files = dim == 1 ? "solution.pvd, profile-NNNN.csv" : "solution.pvd";
+    i.description    = std::to_string(i.n_cells) + " cells, " + std::to_string(i.n_dofs) +
+                    " DoFs, degree " + std::to_string(method.degree) + ", " + Physics::name;
+    i.method.add("engine", op->engine_name());
+    i.method.add("numerical_flux", method.flux);
+    i.method.add("limiter", method.limiter_name);
+    i.method.add("scheme", "ssp_rk3");
+    i.bytes_per_snapshot =
+      snapshot_bytes(i.n_cells, method.degree, dim,
+                     Physics::n_components + Physics::derived_names().size(), write_vtu_files);
+    return i;
+  }
+
+  template <int dim, typename Physics>
+  double
+  Solver<dim, Physics>::initialize()
+  {
+    if (scene.initial_vector)
+      {
+        AssertThrow(scene.initial_vector->size() == solution.size(),
+                    ExcMessage("the initial vector belongs to another discretisation"));
+        solution.copy_locally_owned_data_from(*scene.initial_vector);
+      }
+    else
+      {
+        scene.initial->set_time(scene.start_time);
+        quadrature.project(*scene.initial, solution);
+        limiter.apply(solution, scene.start_time);
+      }
+    return scene.start_time;
+  }
+
+  template <int dim, typename Physics>
+  Inadmissible
+  Solver<dim, Physics>::inadmissible(const AdmissibilityReport &report, const double t,
+                                     const bool initial) const
+  {
+    Inadmissible f;
+    f.time    = t;
+    f.initial = initial;
+    std::ostringstream where;
+    where << "x = (";
+    for (int d = 0; d < dim; ++d)
+      where << (d ? ", " : "") << format_number(report.position[d]);
+    where << ")";
+    f.where  = where.str();
+    f.names  = Physics::component_names();
+    f.state  = report.state;
+    f.reason = report.reason;
+    return f;
+  }
+
+  template <int dim, typename Physics>
+  void
+  Solver<dim, Physics>::check_initial_state(const double t)
+  {
+    auto report = op->check_admissibility(solution);
+    if (report.ok)
+      report = first_failure(hooks.check_admissibility(solution), solution.get_mpi_communicator());
+    if (!report.ok)
+      throw inadmissible(report, t, true);
+  }
+
+  template <int dim, typename Physics>
+  double
+  Solver<dim, Physics>::time_step(const double t)
+  {
+    const double speed = op->max_speed_over_h(solution, scene.min_wave_speed);
+    const double dt    = method.cfl / speed;
+    if (!(std::isfinite(dt) && dt > 0))
+      throw RunError("time step is " + format_number(dt) + " at " + scene.time_name + " = " +
+                     format_number(t) + " (max wave speed/h = " + format_number(speed) + ")");
+    return dt;
+  }
+
+  template <int dim, typename Physics>
+  void
+  Solver<dim, Physics>::post_stage(VectorType &u, const double stage_time, const double weight)
+  {
+    {
+      StepPhases::Scope scope(phases, StepPhases::post_stage_hook);
+      hooks.post_stage(u, stage_time, weight);
+    }
+    {
+      StepPhases::Scope scope(phases, StepPhases::limiter);
+      troubled = limiter.apply(u, stage_time);
+    }
+    {
+      StepPhases::Scope scope(phases, StepPhases::post_limiter_hook);
+      hooks.post_limiter(u, stage_time);
+    }
+    StepPhases::Scope scope(phases, StepPhases::admissibility);
+    auto              report = op->check_admissibility(u);
+    if (report.ok)
+      report = first_failure(hooks.check_admissibility(u), u.get_mpi_communicator());
+    if (!report.ok)
+      throw inadmissible(report, stage_time, false);
+  }
+
+  template <int dim, typename Physics>
+  void
+  Solver<dim, Physics>::advance(const double t, const double dt)
+  {
+    const internal::TimedOperator<dim> timed{*op, phases};
+    integrator.step(timed, solution, t, dt, [&](VectorType &u, const double s, const double w) {
+      post_stage(u, s, w);
+    });
+  }
+
+  template <int dim, typename Physics>
+  void
+  Solver<dim, Physics>::end_of_step(const double t, const double dt, const unsigned long step)
+  {
+    hooks.end_of_step(solution, t, dt, step);
+  }
+
+  template <int dim, typename Physics>
+  void
+  Solver<dim, Physics>::store(const Slot slot)
+  {
+    if (slot == Slot::last_good)
+      last_good = solution;
+    else
+      benchmark_start = solution;
+  }
+
+  template <int dim, typename Physics>
+  void
+  Solver<dim, Physics>::restore(const Slot slot)
+  {
+    solution = slot == Slot::last_good ? last_good : benchmark_start;
+  }
+
+  template <int dim, typename Physics>
+  std::vector<std::array<double, 3>>
+  Solver<dim, Physics>::errors(const double t) const
+  {
+    scene.exact->set_time(t);
+    return quadrature.template errors<Physics::n_components>(solution, *scene.exact);
+  }
+
+  template <int dim, typename Physics>
+  double
+  Solver<dim, Physics>::energy() const
+  {
+    const auto &layout = limiter.layout();
+    return quadrature.integrate(
+      [&](const unsigned int c, const unsigned int q) {
+        return scene.physics.energy(
+          quadrature.template state<Physics::n_components>(solution, c, q),
+          scene.physics.coefficients(layout.cell(c)->material_id()));
+      },
+      solution.get_mpi_communicator());
+  }
+
+  template <int dim, typename Physics>
+  std::vector<std::string>
+  Solver<dim, Physics>::timeseries_names() const
+  {
+    const auto               names = Physics::component_names();
+    std::vector<std::string> header;
+    for (const auto &n : names)
+      header.push_back("integral_" + n);
+    header.push_back("energy");
+    header.push_back("troubled_cells");
+    if (scene.exact)
+      {
+        header.push_back("l2_error");
+        for (const auto &n : names)
+          header.push_back("l1_error_" + n);
+      }
+    for (const auto &n : hooks.timeseries_names())
+      header.push_back(n);
+    return header;
+  }
+
+  template <int dim, typename Physics>
+  std::vector<double>
+  Solver<dim, Physics>::timeseries_values(const double t)
+  {
+    std::vector<double> row = quadrature.integrals(solution);
+    row.push_back(energy());
+    row.push_back(Utilities::MPI::sum(troubled, solution.get_mpi_communicator()));
+    if (scene.exact)
+      {
+        const auto e  = errors(t);
+        double     l2 = 0;
+        for (const auto &ei : e)
+          l2 += ei[1] * ei[1];
+        row.push_back(std::sqrt(l2));
+        for (const auto &ei : e)
+          row.push_back(ei[0]);
+      }
+    for (const double v : hooks.timeseries_values(solution, t))
+      row.push_back(v);
+    return row;
+  }
+
+  template <int dim, typename Physics>
+  void
+  Solver<dim, Physics>::save(ByteWriter &w)
+  {
+    w.io(troubled);
+    w.io(save_cell_values(dof_handler, solution));
+    ByteWriter h;
+    hooks.save(h);
+    w.io(h.bytes);
+  }
+
+  template <int dim, typename Physics>
+  void
+  Solver<dim, Physics>::load(ByteReader &r)
+  {
+    std::string cells, hook_state;
+    r.io(troubled);
+    r.io(cells);
+    r.io(hook_state);
+    load_cell_values(dof_handler, cells, solution);
+    ByteReader h(hook_state);
+    hooks.load(h);
+  }
+
+  template <int dim, typename Physics>
+  void
+  Solver<dim, Physics>::finish(const double t, RunResult &result, const bool write_files)
+  {
+    // errors and integrals of a completed run; the scene's own diagnostics always
+    if (result.status == "completed")
+      {
+        if (scene.exact)
+          {
+            result.errors   = errors(t);
+            result.l1_error = 0;
+            double l2       = 0;
+            for (const auto &e : result.errors)
+              {
+                l2 += e[1] * e[1];
+                result.l1_error += e[0];
+              }
+            result.l2_error = std::sqrt(l2);
+          }
+        const auto names     = Physics::component_names();
+        const auto integrals = quadrature.integrals(solution);
+        for (unsigned int c = 0; c < names.size(); ++c)
+          result.diagnostics.add("integral_" + names[c], integrals[c]);
+        result.diagnostics.add("energy", energy());
+      }
+    hooks.finish(solution, t, result.diagnostics, directory, write_files);
+  }
+
+  template <int dim, typename Physics>
+  SnapshotFiles
+  Solver<dim, Physics>::write_snapshot(const std::string &dir, const unsigned int index,
+                                       const double t)
+  {
+    solution.update_ghost_values();
+    SnapshotFiles files;
+    if (write_vtu_files)
+      files.pvd_entry = files.main_file = write_vtu(dir, index, t);
+    if constexpr (dim == 1)
+      {
+        const std::string profile = write_profile(dir, index, t);
+        if (files.main_file.empty())
+          files.main_file = profile;
+        if (method.write_modes)
+          write_modes(dir, index, t);
+      }
+    solution.zero_out_ghost_values();
+    return files;
+  }
+
+  template <int dim, typename Physics>
+  std::string
+  Solver<dim, Physics>::write_vtu(const std::string &directory, const unsigned int index,
+                                  const double t) const
+  {
+    const MPI_Comm        comm = solution.get_mpi_communicator();
+    DataOut<dim>          data_out;
+    DataOutBase::VtkFlags flags(t, index);
+    // deterministic files: a resumed run writes the same bytes
+    flags.print_date_and_time = false;
+    // deal.II 9.4.1 writes broken high-order cells in 1D: subdivided
+    // linear patches there, Lagrange cells in 2D
+    flags.write_higher_order_cells = (dim > 1);
+    data_out.set_flags(flags);
+    data_out.attach_dof_handler(dof_handler);
+    const internal::DerivedFields<dim, Physics> derived(scene.physics);
+    data_out.add_data_vector(solution, Physics::component_names());
+    data_out.add_data_vector(solution, derived);
+    data_out.build_patches(mapping, std::max(1u, method.degree));
+
+    const unsigned int n_ranks = Utilities::MPI::n_mpi_processes(comm);
+    const unsigned int rank    = Utilities::MPI::this_mpi_process(comm);
+    if (n_ranks == 1)
+      {
+        const std::string name = internal::snapshot_name("solution-", index, ".vtu");
+        std::ofstream     out(directory + "/" + name);
+        data_out.write_vtu(out);
+        record_output_file(directory, name);
+        return name;
+      }
+    const std::string base = internal::snapshot_name("solution-", index, "");
+    {
+      std::ofstream out(directory + "/" + base + "." + Utilities::int_to_string(rank, 4) +
+                        ".vtu");
+      data_out.write_vtu(out);
+    }
+    if (rank == 0)
+      {
+        std::vector<std::string> pieces;
+        for (unsigned int r = 0; r < n_ranks; ++r)
+          {
+            pieces.push_back(base + "." + Utilities::int_to_string(r, 4) + ".vtu");
+            record_output_file(directory, pieces.back());
+          }
+        std::ofstream out(directory + "/" + base + ".pvtu");
+        data_out.write_pvtu_record(out, pieces);
+        record_output_file(directory, base + ".pvtu");
+      }
+    return base + ".pvtu";
+  }
+
+  template <int dim, typename Physics>
+  std::string
+  Solver<dim, Physics>::write_profile(const std::string &directory, const unsigned int index,
+                                      const double t) const
+  {
+    const unsigned int n = method.profile_points > 0 ? method.profile_points :
+                                                       std::max(2u, method.degree + 1);
+    std::vector<Point<dim>> points;
+    for (unsigned int i = 0; i < n; ++i)
+      points.emplace_back(n == 1 ? 0.5 : double(i) / (n - 1));
+    const Quadrature<dim> quad(points);
+    FEValues<dim>         fe_values(mapping, fe, quad, update_values | update_quadrature_points);
+    std::vector<Vector<double>> values(points.size(), Vector<double>(Physics::n_components));
+
+    std::vector<std::string> header{"x"};
+    for (const auto &name : Physics::component_names())
+      header.push_back(name);
+    for (const auto &name : Physics::derived_names())
+      header.push_back(name);
+    const std::string name = internal::snapshot_name("profile-", index, ".csv");
+    CsvWriter         csv;
+    csv.open(directory + "/" + name, header, "time = " + format_number(t));
+    for (const auto &cell : dof_handler.active_cell_iterators())
+      {
+        fe_values.reinit(cell);
+        fe_values.get_function_values(solution, values);
+        const auto a = scene.physics.coefficients(cell->material_id());
+        for (unsigned int q = 0; q < points.size(); ++q)
+          {
+            Tensor<1, Physics::n_components> U;
+            std::vector<double>              row{fe_values.quadrature_point(q)[0]};
+            for (unsigned int c = 0; c < Physics::n_components; ++c)
+              {
+                U[c] = values[q][c];
+                row.push_back(U[c]);
+              }
+            for (const double d : scene.physics.derived(U, a))
+              row.push_back(d);
+            csv.row(row);
+          }
+      }
+    return name;
+  }
+
+  template <int dim, typename Physics>
+  void
+  Solver<dim, Physics>::write_modes(const std::string &directory, const unsigned int index,
+                                    const double t) const
+  {
+    const auto              &layout = limiter.layout();
+    std::vector<std::string> header{"x_left", "h"};
+    for (const auto &n : Physics::component_names())
+      for (unsigned int k = 0; k < layout.n_modes(); ++k)
+        header.push_back(n + "_" + std::to_string(k));
+    CsvWriter csv;
+    csv.open(directory + "/" + internal::snapshot_name("modes-", index, ".csv"), header,
+             "time = " + format_number(t));
+    for (unsigned int c = 0; c < layout.n_owned(); ++c)
+      {
+        std::vector<double> row{layout.cell(c)->vertex(0)[0], layout.extent(c, 0)};
+        for (unsigned int i = 0; i < Physics::n_components; ++i)
+          for (unsigned int k = 0; k < layout.n_modes(); ++k)
+            row.push_back(solution.local_element(layout.index(c, i, k)));
+        csv.row(row);
+      }
+  }
+
+  template <int dim, typename Physics>
+  RunResult
+  run_simulation(const SceneData<dim, Physics> &scene, const RunParameters &run,
+                 const DiscretizationParameters &method, const bool write_files,
+                 const double dt_factor, VectorType *final_state)
+  {
+    Solver<dim, Physics> solver(scene, method, run, write_files);
+    TimeLoop             loop(solver, run, write_files, dt_factor);
+    const RunResult      result = loop.run();
+    if (final_state)
+      *final_state = solver.state();
+    return result;
+  }
+
+  template <int dim, typename Physics>
+  void
+  run_convergence_study(
+    const std::function<SceneData<dim, Physics>(unsigned int)> &make_scene,
+    const RunParameters &run, const DiscretizationParameters &method)
+  {
+    const bool root = Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) == 0;
+    CsvWriter  table, rates;
+    if (root)
+      {
+        table.open(run.directory + "/convergence.csv",
+                   {"degree", "cells", "dofs", "h", "l2_error", "eoc", "l1_error", "eoc_l1",
+                    "time_steps", "wall_time_s", "time_loop_s", "time_loop_cpu_s"});
+        rates.open(run.directory + "/convergence-rates.csv",
+                   {"degree", "eoc_finest", "eoc_l1_finest"},
+                   "L2 and L1 error rates of the two finest meshes (all components)");
+        std::cout << "  degree    cells       dofs       L2 error     EOC   steps" << std::endl;
+      }
+    JsonObject        errors;
+    const std::string scene_name = make_scene(run.convergence_cells.front()).scene;
+    for (unsigned int i = 0; i < run.convergence_degrees.size(); ++i)
+      {
+        const unsigned int p = run.convergence_degrees[i];
+        double             e_prev = -1, h_prev = -1, eoc = NAN, e1_prev = -1, eoc1 = NAN;
+        const double       exponent = std::max(1., (p + 1.) / 3.) - 1.;
+        const double       h0       = 1. / run.convergence_cells.front();
+        std::vector<double> errs;
+        for (const unsigned int cells : run.convergence_cells)
+          {
+            const auto scene = make_scene(cells);
+            AssertThrow(scene.exact, ExcMessage("no exact solution"));
+            const double factor = std::pow((1. / cells) / h0, exponent);
+            const auto   r = run_simulation(scene, run, method.for_study(run, i), false, factor);
+            eoc = e_prev > 0 ? std::log(e_prev / r.l2_error) / std::log(h_prev / r.h_min) : NAN;
+            eoc1 =
+              e1_prev > 0 ? std::log(e1_prev / r.l1_error) / std::log(h_prev / r.h_min) : NAN;
+            if (root)
+              {
+                table.row({double(p), double(cells), double(r.n_dofs), r.h_min, r.l2_error,
+                           eoc, r.l1_error, eoc1, double(r.n_steps), r.wall_time_s,
+                           r.time_loop_s, r.time_loop_cpu_s});
+                std::cout << std::setw(8) << p << std::setw(9) << cells << std::setw(11)
+                          << r.n_dofs << std::setw(15) << std::scientific
+                          << std::setprecision(4) << r.l2_error << std::defaultfloat
+                          << std::setw(8) << std::fixed << std::setprecision(2) << eoc
+                          << std::defaultfloat << std::setw(8) << r.n_steps << std::endl;
+              }
+            e_prev  = r.l2_error;
+            e1_prev = r.l1_error;
+            h_prev  = r.h_min;
+            errs.push_back(r.l2_error);
+          }
+        if (root)
+          rates.row({double(p), eoc, eoc1});
+        errors.add("degree_" + std::to_string(p) + "_l2_errors", errs);
+      }
+    if (root)
+      {
+        JsonObject summary;
+        summary.add("scene", scene_name);
+        summary.add("mode", "convergence study");
+        summary.add("dim", static_cast<long long>(dim));
+        summary.add("status", "completed");
+        summary.add("cells", std::vector<double>(run.convergence_cells.begin(),
+                                                 run.convergence_cells.end()));
+        summary.add_object("errors", errors);
+        summary.write(run.directory + "/summary.json");
+      }
+  }
+} // namespace granular_dg::dg

@@ -1,0 +1,363 @@
+#include <deal.II/base/mpi.h>
+
+#include <granular_dg/base/errors.h>
+#include <granular_dg/base/output.h>
+#include <granular_dg/base/run_parameters.h>
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <regex>
+#include <sstream>
+
+namespace granular_dg
+{
+  std::vector<double>
+  parse_doubles(const std::string &text, const std::string &parameter)
+  {
+    std::vector<double> out;
+    for (const auto &s : Utilities::split_string_list(text, ','))
+      {
+        try
+          {
+            out.push_back(Utilities::string_to_double(s));
+          }
+        catch (...)
+          {
+            require(false, parameter, text, "a comma-separated list of numbers");
+          }
+      }
+    return out;
+  }
+
+  namespace
+  {
+    void
+    declare_output(ParameterHandler &prm)
+    {
+      prm.enter_subsection("Output");
+      prm.declare_entry("directory", "output", Patterns::Anything(),
+                        "Where everything of the run goes (created if missing).");
+      prm.declare_entry("overwrite", "false", Patterns::Bool(),
+                        "Replace the results of a previous run in the directory (the files "
+                        "its manifest lists); without it such a directory is refused.");
+      prm.declare_entry("output times", "", Patterns::Anything(),
+                        "Comma-separated times of the snapshots (besides t = 0 and the "
+                        "final time). Empty: use the output interval.");
+      prm.declare_entry("output interval", "0", Patterns::Double(0),
+                        "Snapshot every this much time when no output times are "
+                        "given (0: only the initial and final state).");
+      prm.declare_entry("write vtu", "true", Patterns::Bool(),
+                        "Write solution-NNNN.vtu snapshots and solution.pvd.");
+      prm.declare_entry("progress interval", "5", Patterns::Double(0),
+                        "Seconds of wall time between progress lines (0: none).");
+      prm.leave_subsection();
+    }
+
+    void
+    declare_checkpoint(ParameterHandler &prm)
+    {
+      prm.enter_subsection("Checkpoint");
+      prm.declare_entry("every steps", "0", Patterns::Integer(0),
+                        "Write a checkpoint (Output/directory/checkpoints/step-N.ckpt, the "
+                        "newest two are kept) every this many steps (0: not by steps).");
+      prm.declare_entry("every seconds", "600", Patterns::Double(0),
+                        "Write a checkpoint every this many seconds of wall time (0: not by "
+                        "time). A SIGINT or SIGTERM always writes one before the run stops.");
+      prm.declare_entry("resume", "false", Patterns::Bool(),
+                        "Continue the run in Output/directory from its newest valid "
+                        "checkpoint (also granular_dg --resume CASE.prm), appending to its "
+                        "solution.pvd and timeseries.csv. The parameters must be those of "
+                        "that run, except Time stepping/final time and max steps, "
+                        "Checkpoint/* and Output/progress interval.");
+      prm.leave_subsection();
+    }
+
+    void
+    declare_modes(ParameterHandler &prm)
+    {
+      prm.enter_subsection("Convergence");
+      prm.declare_entry("enabled", "false", Patterns::Bool(),
+                        "Run a convergence study against the exact solution instead "
+                        "of a single run.");
+      prm.declare_entry("degrees", "0,1,2,3,4", Patterns::List(Patterns::Integer(0, 4)),
+                        "Degrees of the study.");
+      prm.declare_entry("cells", "16,32,64,128", Patterns::List(Patterns::Integer(1)),
+                        "Numbers of cells of the study, coarse to fine: per direction of the "
+                        "mesh (every direction is refined), or per unit length of edge "
+                        "(network).");
+      prm.declare_entry("CFL numbers", "", Patterns::Anything(),
+                        "One CFL number per entry of Convergence/degrees (comma-separated); "
+                        "empty: Time stepping/CFL number for all.");
+      prm.leave_subsection();
+
+      prm.enter_subsection("Benchmark");
+      prm.declare_entry("enabled", "false", Patterns::Bool(),
+                        "Time the steps instead of running to the final time (also "
+                        "granular_dg --benchmark CASE.prm): warm-up steps, then repetitions "
+                        "of a block of steps, restarted from the initial state before they "
+                        "would pass the final time; writes benchmark.json (CPU time per step, "
+                        "DoF-stage updates per second per core, the phases of a step) and "
+                        "nothing else. doc/performance.md.");
+      prm.declare_entry("repetitions", "5", Patterns::Integer(1),
+                        "Number of timed blocks (min and median are reported).");
+      prm.declare_entry("steps", "0", Patterns::Integer(0),
+                        "Steps per block; 0: doubled from 1 until a block takes the "
+                        "minimum time.");
+      prm.declare_entry("minimum time", "0.3", Patterns::Double(0),
+                        "CPU seconds a calibrated block lasts at least.");
+      prm.declare_entry("warm-up steps", "2", Patterns::Integer(0),
+                        "Untimed steps before the calibration.");
+      prm.leave_subsection();
+    }
+
+    void
+    parse_modes(ParameterHandler &prm, RunParameters &p)
+    {
+      prm.enter_subsection("Convergence");
+      p.convergence = prm.get_bool("enabled");
+      for (const auto &s : Utilities::split_string_list(prm.get("degrees")))
+        p.convergence_degrees.push_back(Utilities::string_to_int(s));
+      for (const auto &s : Utilities::split_string_list(prm.get("cells")))
+        p.convergence_cells.push_back(Utilities::string_to_int(s));
+      const std::string cfl_text = prm.get("CFL numbers");
+      prm.leave_subsection();
+      for (const auto &s : Utilities::split_string_list(cfl_text, ','))
+        {
+          double v = 0;
+          try
+            {
+              v = Utilities::string_to_double(s);
+            }
+          catch (...)
+            {
+              require(false, "Convergence/CFL numbers", cfl_text, "comma-separated numbers");
+            }
+          require(v > 0 && v <= 1, "Convergence/CFL numbers", cfl_text, "numbers in (0, 1]");
+          p.convergence_cfl.push_back(v);
+        }
+      if (p.convergence)
+        require(p.convergence_cells.size() >= 2 && !p.convergence_degrees.empty(),
+                "Convergence/cells", p.convergence_cells.size(),
+                "at least two mesh sizes and one degree for a study");
+      require(!p.convergence || p.convergence_cfl.empty() ||
+                p.convergence_cfl.size() == p.convergence_degrees.size(),
+              "Convergence/CFL numbers", cfl_text,
+              "one number per entry of Convergence/degrees (" +
+                std::to_string(p.convergence_degrees.size()) + ")");
+
+      prm.enter_subsection("Benchmark");
+      p.benchmark.enabled      = prm.get_bool("enabled");
+      p.benchmark.repetitions  = prm.get_integer("repetitions");
+      p.benchmark.steps        = prm.get_integer("steps");
+      p.benchmark.min_time     = prm.get_double("minimum time");
+      p.benchmark.warmup_steps = prm.get_integer("warm-up steps");
+      prm.leave_subsection();
+      require(!(p.benchmark.enabled && p.convergence), "Benchmark/enabled", "true",
+              "false when Convergence/enabled is true");
+    }
+  } // namespace
+
+  void
+  RunParameters::declare(ParameterHandler &prm)
+  {
+    prm.enter_subsection("Time stepping");
+    prm.declare_entry("final time", "1", Patterns::Double(),
+                      "End of the simulation. Must be > 0.");
+    prm.declare_entry("max steps", "0", Patterns::Integer(0),
+                      "Stop when the step counter reaches this number, writing a "
+                      "checkpoint and summary.json (status 'stopped at max steps'); "
+                      "continue with --resume. For runs split into jobs, and restart "
+                      "tests. 0: no limit.");
+    prm.leave_subsection();
+    declare_output(prm);
+    declare_checkpoint(prm);
+    declare_modes(prm);
+  }
+
+  void
+  RunParameters::parse(ParameterHandler &prm)
+  {
+    prm.enter_subsection("Time stepping");
+    final_time = prm.get_double("final time");
+    max_steps  = prm.get_integer("max steps");
+    prm.leave_subsection();
+    require(final_time > 0, "Time stepping/final time", final_time, "must be > 0");
+
+    prm.enter_subsection("Output");
+    directory         = prm.get("directory");
+    overwrite         = prm.get_bool("overwrite");
+    const std::string output_times_text = prm.get("output times");
+    output_times      = parse_doubles(output_times_text, "Output/output times");
+    output_interval   = prm.get_double("output interval");
+    write_vtu         = prm.get_bool("write vtu");
+    progress_interval = prm.get_double("progress interval");
+    prm.leave_subsection();
+    for (const double t : output_times)
+      require(t > 0 && t <= final_time, "Output/output times", output_times_text,
+              "times in (0, final time = " + format_number(final_time) + "]");
+
+    parse_modes(prm, *this);
+
+    prm.enter_subsection("Checkpoint");
+    checkpoint_steps   = prm.get_integer("every steps");
+    checkpoint_seconds = prm.get_double("every seconds");
+    resume             = prm.get_bool("resume");
+    prm.leave_subsection();
+    require(!(resume && overwrite), "Checkpoint/resume", "true",
+            "false when Output/overwrite is true (resume continues the run in the "
+            "directory, overwrite discards it)");
+    require(!(resume && convergence), "Checkpoint/resume", "true",
+            "false when Convergence/enabled is true (a study has no checkpoints)");
+    require(!(resume && benchmark.enabled), "Checkpoint/resume", "true",
+            "false in benchmark mode");
+
+    // the parameters of the run, without the switch that resumes it: a
+    // resumed run's parameters.prm is the uninterrupted run's
+    const bool resuming = resume;
+    prm.enter_subsection("Checkpoint");
+    prm.set("resume", false);
+    prm.leave_subsection();
+    std::ostringstream text;
+    prm.print_parameters(text, ParameterHandler::ShortPRM);
+    prm.enter_subsection("Checkpoint");
+    prm.set("resume", resuming);
+    prm.leave_subsection();
+    parameters_text = text.str();
+    parameters      = flatten_parameters(parameters_text);
+  }
+
+  std::vector<double>
+  RunParameters::output_schedule(const double start_time) const
+  {
+    std::vector<double> times;
+    if (!output_times.empty())
+      times = output_times;
+    else if (output_interval > 0)
+      for (unsigned long k = 1; k * output_interval < final_time * (1 - 1e-12); ++k)
+        times.push_back(k * output_interval);
+    times.erase(std::remove_if(times.begin(), times.end(),
+                               [&](const double t) { return t <= start_time * (1 + 1e-12); }),
+                times.end());
+    times.push_back(final_time);
+    std::sort(times.begin(), times.end());
+    times.erase(std::unique(times.begin(), times.end(),
+                            [&](double a, double b) {
+                              return std::abs(a - b) <= 1e-12 * final_time;
+                            }),
+                times.end());
+    return times;
+  }
+
+  void
+  require_reasonable_snapshot_count(const RunParameters &p, const double bytes_per_snapshot,
+                                    const unsigned long max_snapshots)
+  {
+    if (p.benchmark.enabled || p.convergence)
+      return;
+    // counted without building the list (an interval of 1e-9 would be 3e10 times)
+    const double n = 2. + (p.output_times.empty() && p.output_interval > 0 ?
+                             std::floor(p.final_time / p.output_interval) :
+                             double(p.output_times.size()));
+    if (n <= max_snapshots)
+      return;
+    const std::string parameter =
+      p.output_times.empty() ? "Output/output interval" : "Output/output times";
+    const std::string value = p.output_times.empty() ? format_number(p.output_interval) :
+                                                       std::to_string(p.output_times.size()) +
+                                                         " times";
+    require(false, parameter, value,
+            "at most " + std::to_string(max_snapshots) + " snapshots per run: this asks for " +
+              format_number(n) + " snapshots of about " + format_bytes(bytes_per_snapshot) +
+              " each (" + format_bytes(n * bytes_per_snapshot) + " in all)");
+  }
+
+  void
+  begin_output(const RunParameters &params)
+  {
+    std::string error;
+    if (Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) == 0)
+      {
+        try
+          {
+            if (params.benchmark.enabled)
+              prepare_benchmark_directory(params.directory);
+            else if (params.resume)
+              {
+                if (std::filesystem::is_directory(params.directory))
+                  lock_output_directory(params.directory);
+                check_resumable(params);
+                begin_manifest(params.directory, true);
+              }
+            else
+              prepare_output_directory(params.directory, params.overwrite);
+          }
+        catch (const InputError &e)
+          {
+            error = e.what();
+          }
+        if (error.empty() && !params.benchmark.enabled)
+          {
+            std::ofstream out(params.directory + "/parameters.prm");
+            out << params.parameters_text;
+            record_output_file(params.directory, "parameters.prm");
+          }
+      }
+    // the other ranks write into the directory only after it exists
+    error = Utilities::MPI::broadcast(MPI_COMM_WORLD, error, 0);
+    if (!error.empty())
+      throw InputError(error);
+  }
+
+  void
+  require_beyond_checkpoint(const RunParameters &params, const Checkpoint &checkpoint,
+                            const std::string &time_name)
+  {
+    require(checkpoint.time < params.final_time * (1 - 1e-14), "Time stepping/final time",
+            params.final_time,
+            "after the time of the checkpoint, " + time_name + " = " +
+              format_number(checkpoint.time) + " (" + checkpoint.file +
+              "): raise it to continue the run");
+    require(params.max_steps == 0 || checkpoint.step < params.max_steps,
+            "Time stepping/max steps", params.max_steps,
+            "0 or above the step of the checkpoint, " + std::to_string(checkpoint.step) + " (" +
+              checkpoint.file + ")");
+  }
+
+  void
+  check_resumable(const RunParameters &params)
+  {
+    const std::string &dir = params.directory;
+    require(std::filesystem::is_directory(dir), "Checkpoint/resume", "true",
+            "Output/directory = '" + dir + "' does not exist: there is no run to resume");
+    std::ifstream in(dir + "/parameters.prm");
+    require(static_cast<bool>(in), "Checkpoint/resume", "true",
+            "Output/directory = '" + dir + "' holds no run (no parameters.prm)");
+    require(has_checkpoints(dir, true), "Checkpoint/resume", "true",
+            "the run in '" + dir + "' wrote no checkpoint (" + checkpoint_directory(dir) +
+              " is empty or missing" +
+              (has_incomplete_checkpoint(dir) ?
+                 "; an incomplete checkpoint of an interrupted write was ignored" :
+                 "") +
+              "), it cannot be resumed");
+    std::ostringstream before;
+    before << in.rdbuf();
+    require_same_parameters(flatten_parameters(before.str()), params.parameters,
+                            "the run in '" + dir + "'");
+
+    // a completed run has nothing to continue, unless the final time grows
+    std::ifstream      summary(dir + "/summary.json");
+    std::ostringstream text;
+    text << summary.rdbuf();
+    const std::regex status(R"re("status": "completed)re"),
+      final_time(R"re("final_time": ([-+0-9.eE]+))re");
+    std::smatch       match;
+    const std::string json = text.str();
+    if (std::regex_search(json, status) && std::regex_search(json, match, final_time) &&
+        std::stod(match[1]) >= params.final_time * (1 - 1e-12))
+      require(false, "Checkpoint/resume", "true",
+              "the run in '" + dir + "' completed (final time " + std::string(match[1]) +
+                "); nothing to resume (raise Time stepping/final time to continue it)");
+  }
+} // namespace granular_dg

@@ -1,0 +1,172 @@
+#include <granular_dg/base/errors.h>
+#include <granular_dg/base/output.h>
+#include <granular_dg/base/parameters.h>
+#include <granular_dg/dg/parameters.h>
+
+#include <algorithm>
+#include <cmath>
+
+namespace granular_dg::dg
+{
+  namespace
+  {
+    const EnumNames<Engine> engine_names({{Engine::automatic, "auto"},
+                                          {Engine::matrix_free, "matrix_free"},
+                                          {Engine::line, "line"}});
+
+    std::string
+    limiter_selection(const std::string &physics_variables)
+    {
+      return "none|componentwise|characteristic" +
+             (physics_variables.empty() ? "" : "|" + physics_variables);
+    }
+  } // namespace
+
+  double
+  snapshot_bytes(const double n_cells, const unsigned int degree, const int dim,
+                 const unsigned int n_fields, const bool vtu)
+  {
+    // VTU: Float32 values at (p+1)^dim points per cell, the points and the
+    // connectivity; CSV: about 16 characters a number
+    const double points = n_cells * std::pow(std::max(2u, degree + 1), dim);
+    return (vtu ? points * (4. * n_fields + 12. + 8.) : 0.) +
+           (dim == 1 ? points * 16. * (n_fields + 1) : 0.);
+  }
+
+  double
+  ssprk3_cfl_limit(const unsigned int degree)
+  {
+    // max nu = a dt/h with |R(nu z)| <= 1 for every eigenvalue z of the
+    // upwind DG operator of u_t + u_x = 0 (Fourier analysis; R the SSP-RK3
+    // stability polynomial), rounded down; contrib/dg_cfl_limits.py
+    // computes them
+    static const double limit[] = {1.2563, 0.4095, 0.2097, 0.1300, 0.0896};
+    return limit[std::min(degree, 4u)];
+  }
+
+  void
+  require_stable_cfl(const double cfl, const unsigned int degree, const std::string &parameter)
+  {
+    const double limit = ssprk3_cfl_limit(degree);
+    require(cfl <= limit, parameter, cfl,
+            "at most " + format_number(limit) + " at degree " + std::to_string(degree) +
+              " (the linear stability limit of SSP-RK3 with DG of degree p = 0..4: "
+              "1.2563, 0.4095, 0.2097, 0.13, 0.0896)");
+  }
+
+  void
+  DiscretizationParameters::declare(ParameterHandler &prm, const std::string &fluxes,
+                                    const std::string &physics_variables)
+  {
+    prm.enter_subsection("Discretization");
+    prm.declare_entry("degree", "2", Patterns::Integer(0, 4),
+                      "Polynomial degree of the FE_DGQLegendre space (0 = finite "
+                      "volumes). Allowed: 0 to 4.");
+    prm.declare_entry("numerical flux", "local_lax_friedrichs", Patterns::Selection(fluxes),
+                      "Numerical flux on faces: local_lax_friedrichs (Rusanov) or one the "
+                      "physics offers (doc/ of the scene). Allowed: " + fluxes + ".");
+    prm.declare_entry("engine", "auto", engine_names.pattern(),
+                      "The operator: matrix_free (deal.II MatrixFree cell/face kernels, "
+                      "any dimension, MPI) or line (a lean 1D kernel of the same "
+                      "discretisation, serial, several times faster in 1D); auto: line "
+                      "for serial 1D runs, matrix_free otherwise.");
+    prm.leave_subsection();
+
+    prm.enter_subsection("Time stepping");
+    prm.declare_entry("CFL number", "0.2", Patterns::Double(),
+                      "Courant number dt * sum_d(lambda_max / h_d). SSP-RK3 with DG "
+                      "of degree p is stable up to about 1/(2p+1). Allowed: (0, 1].");
+    prm.declare_entry("check stability limit", "true", Patterns::Bool(),
+                      "Refuse a CFL number above SSP-RK3's linear stability limit for the "
+                      "degree (1.256, 0.4095, 0.2097, 0.13, 0.0896 for p = 0-4). false: "
+                      "run anyway, for stability studies of where the method fails.");
+    prm.leave_subsection();
+
+    const std::string limiters = limiter_selection(physics_variables);
+    prm.enter_subsection("Limiter");
+    prm.declare_entry("scheme", "none", Patterns::Selection(limiters),
+                      "TVB minmod limiter on the Legendre modes after every stage: "
+                      "none, componentwise (conserved variables), characteristic "
+                      "(eigenvectors of the flux Jacobian at the cell average)" +
+                        (physics_variables.empty() ?
+                           std::string(".") :
+                           " or " + physics_variables +
+                             " (variables the physics names, continuous across material "
+                             "interfaces)."));
+    prm.declare_entry("TVB constant", "0", Patterns::Double(0),
+                      "M of the TVB minmod: slopes with |slope| <= M h^2 are not "
+                      "limited (0 = TVD minmod).");
+    prm.leave_subsection();
+
+    prm.enter_subsection("Output");
+    prm.declare_entry("profile points per cell", "0", Patterns::Integer(0, 20),
+                      "Sample points per cell in the 1D profile-NNNN.csv, equally "
+                      "spaced with both end points (1: the cell centre; 0: degree+1, "
+                      "at least 2).");
+    prm.declare_entry("write modes", "false", Patterns::Bool(),
+                      "1D: also write modes-NNNN.csv, the Legendre coefficients of every "
+                      "cell (x_left, h, then per component the modes 0..p): the exact "
+                      "discrete solution, usable as a reference solution of another run "
+                      "(Exact solution/reference file of the scenes that offer it).");
+    prm.leave_subsection();
+  }
+
+  void
+  DiscretizationParameters::parse(ParameterHandler &prm, const RunParameters &run,
+                                  const std::string &physics_variables)
+  {
+    prm.enter_subsection("Discretization");
+    degree = prm.get_integer("degree");
+    flux   = prm.get("numerical flux");
+    engine = engine_names.parse("Discretization/engine", prm.get("engine"));
+    prm.leave_subsection();
+
+    prm.enter_subsection("Time stepping");
+    cfl                   = prm.get_double("CFL number");
+    check_stability_limit = prm.get_bool("check stability limit");
+    prm.leave_subsection();
+    // (a stability study, check stability limit = false, may go beyond 1)
+    require(cfl > 0 && (cfl <= 1 || !check_stability_limit), "Time stepping/CFL number", cfl,
+            "must be in (0, 1] (SSP-RK3 DG of degree p is stable up to about 1/(2p+1))");
+
+    prm.enter_subsection("Limiter");
+    limiter_name = prm.get("scheme");
+    tvb_M        = prm.get_double("TVB constant");
+    prm.leave_subsection();
+    const EnumNames<LimiterType> limiter_names(
+      {{LimiterType::none, "none"},
+       {LimiterType::componentwise, "componentwise"},
+       {LimiterType::characteristic, "characteristic"},
+       {LimiterType::physics_variables,
+        physics_variables.empty() ? std::string("(none)") : physics_variables}});
+    limiter = limiter_names.parse("Limiter/scheme", limiter_name);
+
+    prm.enter_subsection("Output");
+    profile_points = prm.get_integer("profile points per cell");
+    write_modes    = prm.get_bool("write modes");
+    prm.leave_subsection();
+
+    // above the linear stability limit the run would blow up after a few
+    // hundred steps (or, with a limiter, silently lose accuracy); a
+    // convergence study needs it for every degree of the study
+    if (!check_stability_limit)
+      return;
+    if (!run.convergence)
+      require_stable_cfl(cfl, degree, "Time stepping/CFL number");
+    else
+      for (unsigned int i = 0; i < run.convergence_degrees.size(); ++i)
+        require_stable_cfl(for_study(run, i).cfl, run.convergence_degrees[i],
+                           run.convergence_cfl.empty() ? "Time stepping/CFL number" :
+                                                         "Convergence/CFL numbers");
+  }
+
+  DiscretizationParameters
+  DiscretizationParameters::for_study(const RunParameters &run, const unsigned int i) const
+  {
+    DiscretizationParameters m = *this;
+    m.degree                   = run.convergence_degrees[i];
+    if (!run.convergence_cfl.empty())
+      m.cfl = run.convergence_cfl[i];
+    return m;
+  }
+} // namespace granular_dg::dg
