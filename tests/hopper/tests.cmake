@@ -44,8 +44,9 @@ granular_dg_test(hopper/preservation_cone PRM ../prm/hopper_radial_cone.prm
   COMPARE summary.json:diagnostics/max_rel_diff_radial NUMDIFF -a 2.5e-3 -r 0
   FIXTURES_SETUP hopper_field WORKDIR ${CMAKE_CURRENT_BINARY_DIR}/hopper_preservation_run)
 
-# ParaView opens the marched field hopper-field.pvd of the cone run: two
-# pieces (upper hopper, marched lower hopper), the stress arrays, no NaN.
+# ParaView opens the marched field hopper-field.pvd of the cone run: the
+# upper hopper and the marched lower hopper (deal.II DataOutBase patches, one
+# per quadrilateral: 4 points each), the stress arrays, no NaN.
 if(PVPYTHON_EXECUTABLE)
   granular_dg_test(hopper/field_pvd EXE ${PVPYTHON_EXECUTABLE}
     ARGS --no-mpi ${CMAKE_CURRENT_SOURCE_DIR}/hopper/read_field.py

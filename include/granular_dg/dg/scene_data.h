@@ -118,6 +118,99 @@ namespace granular_dg::dg
     bool resuming_run = false;
   };
 
+  /// The hooks of a scene called one after the other (the first failing
+  /// admissibility report wins; save/load in order).
+  template <int dim>
+  class HookList : public SceneHooks<dim>
+  {
+  public:
+    explicit HookList(std::vector<std::shared_ptr<SceneHooks<dim>>> list)
+      : list(std::move(list))
+    {}
+
+    void
+    set_all_resuming(const bool r)
+    {
+      this->set_resuming(r);
+      for (auto &h : list)
+        h->set_resuming(r);
+    }
+    void
+    initialize(const DoFHandler<dim> &d, const Mapping<dim> &m,
+               const ModalLayout<dim> &l) override
+    {
+      for (auto &h : list)
+        h->initialize(d, m, l);
+    }
+    void
+    post_stage(VectorType &u, const double t, const double w) override
+    {
+      for (auto &h : list)
+        h->post_stage(u, t, w);
+    }
+    void
+    post_limiter(VectorType &u, const double t) override
+    {
+      for (auto &h : list)
+        h->post_limiter(u, t);
+    }
+    AdmissibilityReport
+    check_admissibility(const VectorType &u) const override
+    {
+      for (const auto &h : list)
+        if (auto r = h->check_admissibility(u); !r.ok)
+          return r;
+      return {};
+    }
+    void
+    end_of_step(const VectorType &u, const double t, const double dt,
+                const unsigned long step) override
+    {
+      for (auto &h : list)
+        h->end_of_step(u, t, dt, step);
+    }
+    std::vector<std::string>
+    timeseries_names() const override
+    {
+      std::vector<std::string> names;
+      for (const auto &h : list)
+        for (const auto &n : h->timeseries_names())
+          names.push_back(n);
+      return names;
+    }
+    std::vector<double>
+    timeseries_values(const VectorType &u, const double t) override
+    {
+      std::vector<double> values;
+      for (auto &h : list)
+        for (const double v : h->timeseries_values(u, t))
+          values.push_back(v);
+      return values;
+    }
+    void
+    save(ByteWriter &w) override
+    {
+      for (auto &h : list)
+        h->save(w);
+    }
+    void
+    load(ByteReader &r) override
+    {
+      for (auto &h : list)
+        h->load(r);
+    }
+    void
+    finish(const VectorType &u, const double t, JsonObject &diagnostics,
+           const std::string &directory, const bool write_files) override
+    {
+      for (auto &h : list)
+        h->finish(u, t, diagnostics, directory, write_files);
+    }
+
+  private:
+    std::vector<std::shared_ptr<SceneHooks<dim>>> list;
+  };
+
   /// What a scene hands to the solver: its physics (with its numerical flux),
   /// mesh, boundary and initial data and, where known, the exact solution
   /// (conserved variables).
@@ -130,8 +223,9 @@ namespace granular_dg::dg
     BoundaryMap<dim>                    boundary;
     std::shared_ptr<Function<dim>>      initial;
     std::shared_ptr<Function<dim>>      exact;
-    /// optional: stage operations and diagnostics of the scene
-    std::shared_ptr<SceneHooks<dim>>    hooks;
+    /// the scene's stage operations and diagnostics, called in this order
+    /// (e.g. a friction projection, then the diagnostics that read it)
+    std::vector<std::shared_ptr<SceneHooks<dim>>> hooks;
     /// the time step uses max(lambda_max(U), this) as wave speed: for states
     /// at rest whose speed is 0 (sigma'(0) = 0), the speed the scene will reach
     double                              min_wave_speed = 0.;

@@ -106,8 +106,7 @@ namespace granular_dg::dg
     ModalLimiter<dim, Physics>       limiter;
     CellQuadrature<dim>              quadrature;
     SSPRK3<>                         integrator;
-    SceneHooks<dim>                  no_hooks;
-    SceneHooks<dim>                 &hooks;
+    HookList<dim>                    hooks;
     VectorType                       solution, last_good, benchmark_start;
     unsigned int                     troubled = 0;
     StepPhases                      *phases   = nullptr;

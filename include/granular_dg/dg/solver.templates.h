@@ -105,7 +105,7 @@ namespace granular_dg::dg
     , dof_handler(*scene_data.triangulation)
     , op(make_operator<dim>(method.engine, scene_data.physics, scene_data.boundary))
     , limiter(scene_data.physics, method.limiter, method.tvb_M, scene_data.boundary)
-    , hooks(scene_data.hooks ? *scene_data.hooks : no_hooks)
+    , hooks(scene_data.hooks)
   {
     dof_handler.distribute_dofs(fe);
     op->reinit(mapping, dof_handler);
@@ -113,7 +113,7 @@ namespace granular_dg::dg
     op->initialize_vector(last_good);
     limiter.reinit(dof_handler, solution);
     quadrature.reinit(limiter.layout());
-    hooks.set_resuming(run.resume && write_files);
+    hooks.set_all_resuming(run.resume && write_files);
     hooks.initialize(dof_handler, mapping, limiter.layout());
   }
 

@@ -5,9 +5,11 @@
 #include <deal.II/lac/la_parallel_vector.h>
 
 #include <granular_dg/dg/modal_layout.h>
+#include <granular_dg/dg/scene_data.h>
 #include <granular_dg/equations/friction_column/system.h>
 
 #include <cmath>
+#include <optional>
 #include <vector>
 
 namespace granular_dg::column
@@ -48,11 +50,11 @@ namespace granular_dg::column
       const QGauss<1> q(n_modes + 1);
       weights = q.get_weights();
       basis.assign(q.size() * max_modes, 0.);
-      for (unsigned int k = 0; k < n_modes; ++k)
+      for (unsigned int i = 0; i < q.size(); ++i)
         {
-          const Polynomials::Legendre L(k);
-          for (unsigned int i = 0; i < q.size(); ++i)
-            basis[i * max_modes + k] = L.value(q.point(i)[0]);
+          const auto L = dg::legendre_values(n_modes, q.point(i)[0]);
+          for (unsigned int k = 0; k < n_modes; ++k)
+            basis[i * max_modes + k] = L[k];
         }
       for (unsigned int c = 0; c < layout.n_owned(); ++c)
         for (unsigned int k = 0; k < n_modes; ++k)
@@ -166,5 +168,77 @@ namespace granular_dg::column
     std::vector<double>       weights, basis;
     std::vector<double>       multiplier;
     std::vector<CellState>    state;
+  };
+
+  /**
+   * The friction projection as the stage operation of the column's runs
+   * (with Physics/friction = projection; otherwise it does nothing): after the
+   * explicit part of every stage, with the stage's effective time step (or,
+   * for comparison, the paper's printed weights dt, dt/2, dt), and after the
+   * limiter v = 0 again in the cells the friction holds.
+   */
+  class FrictionHooks : public dg::SceneHooks<1>
+  {
+  public:
+    FrictionHooks(const System &system, const bool printed_weights)
+      : system(system)
+      , printed_weights(printed_weights)
+    {}
+
+    void
+    initialize(const DoFHandler<1> &, const Mapping<1> &,
+               const dg::ModalLayout<1> &layout) override
+    {
+      projection.emplace(system, layout);
+    }
+
+    void
+    post_stage(dg::VectorType &U, double, const double weight) override
+    {
+      if (!implicit())
+        return;
+      const double printed[3] = {1., 2., 1.5};
+      const double w          = printed_weights ? weight * printed[stage % 3] : weight;
+      ++stage;
+      projection->apply(U, w);
+    }
+
+    void
+    post_limiter(dg::VectorType &U, double) override
+    {
+      if (implicit())
+        projection->keep_stuck_at_rest(U);
+    }
+
+    void
+    save(ByteWriter &w) override
+    {
+      w.io(stage);
+    }
+
+    void
+    load(ByteReader &r) override
+    {
+      r.io(stage);
+    }
+
+    /// whether the friction is the implicit projection
+    bool
+    implicit() const
+    {
+      return system.parameters().friction == FrictionTreatment::projection;
+    }
+
+    const FrictionProjection &
+    state() const
+    {
+      return *projection;
+    }
+
+  private:
+    const System                      system;
+    const bool                        printed_weights;
+    std::optional<FrictionProjection> projection;
+    unsigned long                     stage = 0;
   };
 } // namespace granular_dg::column
