@@ -13,12 +13,30 @@
 
 #include <array>
 #include <string>
+#include <type_traits>
 
 namespace granular_dg::dg
 {
   using namespace dealii;
   template <int dim, typename Physics>
   class DGOperator;
+
+  namespace internal
+  {
+    /// Physics::max_compiled_degree if the physics sets it (-1: one
+    /// run-time-degree instantiation of the kernels, cheap to compile), else
+    /// the degrees 0-4 in 2D and the run-time degree in 1D.
+    template <int dim, typename Physics, typename = void>
+    struct MaxCompiledDegree
+    {
+      static constexpr int value = (dim == 1) ? -1 : 4;
+    };
+    template <int dim, typename Physics>
+    struct MaxCompiledDegree<dim, Physics, std::void_t<decltype(Physics::max_compiled_degree)>>
+    {
+      static constexpr int value = (dim == 1) ? -1 : Physics::max_compiled_degree;
+    };
+  } // namespace internal
 
   namespace internal
   {
@@ -97,7 +115,7 @@ namespace granular_dg::dg
     static constexpr unsigned int n_coefficients = Physics::n_coefficients;
     /// The kernels are compiled for the degrees 0..max_compiled_degree (-1:
     /// none, the run-time-degree kernels serve every degree).
-    static constexpr int max_compiled_degree = (dim == 1) ? -1 : 4;
+    static constexpr int max_compiled_degree = internal::MaxCompiledDegree<dim, Physics>::value;
     template <typename T>
     using State = Tensor<1, n_components, T>;
     template <typename T>

@@ -134,10 +134,49 @@ namespace granular_dg::dg
     void
     build_tables();
 
+    using Coefficients = std::array<double, Physics::n_coefficients>;
+
+    /// What limits a cell in one direction, in the variables the limiter
+    /// works on: the jumps of the cell's expansion to its two faces, its
+    /// slope, the neighbour differences (dp: ahead, dm: behind), the maps
+    /// back to the conserved variables and M h^2.
+    struct Direction
+    {
+      State         jump_p, jump_m, slope, dp, dm;
+      Tensor<2, n_components> R, J;
+      double        Mh2 = 0;
+    };
+
     /// apply() with n1 = degree + 1 modes per direction
     template <unsigned int n1>
     unsigned int
     apply_impl(VectorType &u, double t) const;
+
+    /// Limit the modes x of owned cell i; true if it was troubled.
+    template <unsigned int n1>
+    bool
+    limit_cell(unsigned int i, double *x) const;
+
+    /// The limiter's view of owned cell i (modes x, average avg) in
+    /// direction d.
+    template <unsigned int n1>
+    Direction
+    analyse(unsigned int i, int d, const double *x, const State &avg) const;
+
+    /// The average of cell (owned or ghost) of the current apply()
+    State
+    average(unsigned int cell) const;
+
+    /// The boundary data of a face, at its centre.
+    State
+    boundary_data(const Face &face) const;
+
+    /// The neighbour average across face f of a cell with average avg and
+    /// coefficients a (and the neighbour's coefficients); false at an
+    /// outflow boundary (no neighbour to limit against).
+    bool
+    neighbor_average(const Face &face, unsigned int f, const State &avg, const Coefficients &a,
+                     State &result, const Coefficients *&a_nb) const;
 
     const Physics    physics;
     LimiterType      type;
@@ -151,7 +190,12 @@ namespace granular_dg::dg
     /// modes of a cell are base + component * n_modes() + mode
     std::vector<std::size_t> base;
 
+    /// L_k(0) and L_k(1)
+    std::vector<double> at_0, at_1;
+
     mutable std::vector<unsigned char> troubled;
+    /// the (ghosted) solution of the current apply(), for the averages
+    mutable const double *averages = nullptr;
     /// physics_variables: W(average) of every cell of the current apply()
     mutable std::vector<State> limiting_values;
   };

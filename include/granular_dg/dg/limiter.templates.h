@@ -114,6 +114,13 @@ namespace granular_dg::dg
                         ExcMessage("ModalLimiter expects the modes of a cell component by "
                                    "component (FESystem of FE_DGQLegendre)"));
       }
+    at_0.resize(cells.degree() + 1);
+    at_1.resize(cells.degree() + 1);
+    for (unsigned int k = 0; k <= cells.degree(); ++k)
+      {
+        at_0[k] = cells.value_at_0(k);
+        at_1[k] = cells.value_at_1(k);
+      }
     faces.assign(cells.n_owned() * 2 * dim, Face());
     for (unsigned int i = 0; i < cells.n_owned(); ++i)
       for (unsigned int f = 0; f < 2 * dim; ++f)
@@ -147,191 +154,206 @@ namespace granular_dg::dg
   }
 
   template <int dim, typename Physics>
+  typename ModalLimiter<dim, Physics>::State
+  ModalLimiter<dim, Physics>::average(const unsigned int cell) const
+  {
+    State avg;
+    for (unsigned int c = 0; c < n_components; ++c)
+      avg[c] = averages[base[cell] + c * cells.n_modes()];
+    return avg;
+  }
+
+  template <int dim, typename Physics>
+  typename ModalLimiter<dim, Physics>::State
+  ModalLimiter<dim, Physics>::boundary_data(const Face &face) const
+  {
+    State g;
+    if (face.condition.data)
+      for (unsigned int c = 0; c < n_components; ++c)
+        g[c] = face.condition.data->value(face.center, c);
+    return g;
+  }
+
+  template <int dim, typename Physics>
+  bool
+  ModalLimiter<dim, Physics>::neighbor_average(const Face &face, const unsigned int f,
+                                               const State &avg, const Coefficients &a,
+                                               State &result, const Coefficients *&a_nb) const
+  {
+    a_nb = &a;
+    if (face.neighbor >= 0)
+      {
+        result = average(face.neighbor);
+        a_nb   = &coefficients[face.neighbor];
+        return true;
+      }
+    if (!face.has_condition || face.condition.kind == BoundaryKind::outflow)
+      return false;
+    Tensor<1, dim> n;
+    n[f / 2] = (f % 2 == 0) ? -1. : 1.;
+    result   = physics.boundary_state(face.condition.kind, avg, n, boundary_data(face), a);
+    return true;
+  }
+
+  template <int dim, typename Physics>
+  template <unsigned int n1>
+  typename ModalLimiter<dim, Physics>::Direction
+  ModalLimiter<dim, Physics>::analyse(const unsigned int i, const int d, const double *x,
+                                      const State &avg) const
+  {
+    constexpr unsigned int nc      = n_components;
+    constexpr unsigned int n_modes = dim == 1 ? n1 : n1 * n1;
+    const unsigned int     stride  = d == 0 ? 1 : n1;
+    const auto            &a       = coefficients[i];
+    const Face            *face    = &faces[i * 2 * dim];
+    Direction              r;
+    State                  avg_m, avg_p;
+    const Coefficients    *a_m, *a_p;
+    const bool has_m = neighbor_average(face[2 * d], 2 * d, avg, a, avg_m, a_m);
+    const bool has_p = neighbor_average(face[2 * d + 1], 2 * d + 1, avg, a, avg_p, a_p);
+    for (unsigned int c = 0; c < nc; ++c)
+      {
+        const double *xc = x + c * n_modes;
+        for (unsigned int k = 1; k < n1; ++k)
+          {
+            const double mode = xc[k * stride];
+            r.jump_p[c] += mode * at_1[k];
+            r.jump_m[c] -= mode * at_0[k];
+          }
+        r.slope[c] = xc[stride] * at_1[1];
+      }
+    State dp = has_p ? avg_p - avg : State(), dm = has_m ? avg - avg_m : State();
+    // the traces at the two faces (for limiter_boundary())
+    const State   face_value[2] = {avg - r.jump_m, avg + r.jump_p};
+    Tensor<2, nc> L;
+    if constexpr (internal::has_limiting_variables<Physics>::value)
+      if (type == LimiterType::physics_variables)
+        {
+          const State &W = limiting_values[i];
+          r.J            = physics.limiting_jacobian(avg, a);
+          if (has_p)
+            dp = (face[2 * d + 1].neighbor >= 0 ? limiting_values[face[2 * d + 1].neighbor] :
+                                                  physics.limiting_variables(avg_p, *a_p)) -
+                 W;
+          if (has_m)
+            dm = W - (face[2 * d].neighbor >= 0 ? limiting_values[face[2 * d].neighbor] :
+                                                  physics.limiting_variables(avg_m, *a_m));
+          r.jump_p = r.J * r.jump_p;
+          r.jump_m = r.J * r.jump_m;
+          r.slope  = r.J * r.slope;
+        }
+    if (type == LimiterType::characteristic)
+      {
+        Tensor<1, dim> n;
+        n[d] = 1.;
+        physics.eigenvectors(avg, n, a, L, r.R);
+        r.jump_p = L * r.jump_p;
+        r.jump_m = L * r.jump_m;
+        r.slope  = L * r.slope;
+        dp       = L * dp;
+        dm       = L * dm;
+      }
+    // per field: whether the difference across the face is known
+    std::array<bool, nc> known_p, known_m;
+    known_p.fill(has_p);
+    known_m.fill(has_m);
+    if constexpr (internal::has_limiter_boundary<Physics, dim>::value)
+      for (const unsigned int f : {2 * d, 2 * d + 1})
+        {
+          if (face[f].neighbor >= 0 || !face[f].has_condition)
+            continue;
+          Tensor<1, dim> n;
+          n[d]         = (f % 2 == 0) ? -1. : 1.;
+          const auto o = physics.limiter_boundary(face[f].condition.kind, avg,
+                                                  face_value[f % 2], n, boundary_data(face[f]),
+                                                  a, type == LimiterType::characteristic ? &L :
+                                                                                           nullptr);
+          if (!o)
+            continue;
+          (f % 2 == 0 ? dm : dp)           = (f % 2 == 0 ? -1. : 1.) * o->difference;
+          (f % 2 == 0 ? known_m : known_p) = o->known;
+        }
+    const double h = cells.extent(i, d);
+    r.Mh2          = M * h * h;
+    for (unsigned int c = 0; c < nc; ++c)
+      {
+        // at an outflow boundary the missing difference does not limit
+        r.dp[c] = known_p[c] ? dp[c] : dm[c];
+        r.dm[c] = known_m[c] ? dm[c] : dp[c];
+      }
+    return r;
+  }
+
+  template <int dim, typename Physics>
+  template <unsigned int n1>
+  bool
+  ModalLimiter<dim, Physics>::limit_cell(const unsigned int i, double *x) const
+  {
+    constexpr unsigned int nc      = n_components;
+    constexpr unsigned int n_modes = dim == 1 ? n1 : n1 * n1;
+    const State            avg     = average(i);
+    // per direction: jumps to the faces and the slope, in the variables the
+    // limiter works on (components or characteristic fields), and the
+    // neighbour differences; the limited slopes only for a troubled cell
+    std::array<Direction, dim> dir;
+    bool                       is_troubled = false;
+    for (int d = 0; d < dim; ++d)
+      {
+        dir[d]               = analyse<n1>(i, d, x, avg);
+        const Direction &r   = dir[d];
+        for (unsigned int c = 0; c < nc; ++c)
+          if (internal::minmod_tvb(r.jump_p[c], r.dp[c], r.dm[c], r.Mh2) != r.jump_p[c] ||
+              internal::minmod_tvb(r.jump_m[c], r.dp[c], r.dm[c], r.Mh2) != r.jump_m[c])
+            is_troubled = true;
+      }
+    if (!is_troubled)
+      return false;
+    for (int d = 0; d < dim; ++d)
+      {
+        const Direction &r = dir[d];
+        State            s;
+        for (unsigned int c = 0; c < nc; ++c)
+          s[c] = internal::minmod_tvb(r.slope[c], r.dp[c], r.dm[c], r.Mh2);
+        if (type == LimiterType::characteristic)
+          s = r.R * s;
+        else if (type == LimiterType::physics_variables)
+          s = invert(r.J) * s;
+        const unsigned int stride = d == 0 ? 1 : n1;
+        for (unsigned int c = 0; c < nc; ++c)
+          x[c * n_modes + stride] = s[c] / at_1[1];
+      }
+    // a troubled cell keeps its average and linear modes only
+    for (unsigned int c = 0; c < nc; ++c)
+      for (unsigned int m = 1; m < n_modes; ++m)
+        if (!(m == 1 || (dim == 2 && m == n1)))
+          x[c * n_modes + m] = 0.;
+    return true;
+  }
+
+  template <int dim, typename Physics>
   template <unsigned int n1>
   unsigned int
   ModalLimiter<dim, Physics>::apply_impl(VectorType &u, const double t) const
   {
-    constexpr unsigned int nc      = n_components;
-    constexpr unsigned int n_modes = dim == 1 ? n1 : n1 * n1;
-    constexpr unsigned int n_faces = 2 * dim;
-    std::array<double, n1> at_0, at_1;
-    for (unsigned int k = 0; k < n1; ++k)
-      {
-        at_0[k] = cells.value_at_0(k);
-        at_1[k] = cells.value_at_1(k);
-      }
-
-    // averages (also of ghost cells) are read from g, the modes of owned
-    // cells read and written in u
-    const double *g_data = cells.with_ghosts(u).begin();
-    double       *u_data = u.begin();
-    auto          average = [&](const unsigned int cell) {
-      State avg;
-      for (unsigned int c = 0; c < nc; ++c)
-        avg[c] = g_data[base[cell] + c * n_modes];
-      return avg;
-    };
+    // averages (also of ghost cells) are read from the ghosted vector, the
+    // modes of owned cells read and written in u
+    averages = cells.with_ghosts(u).begin();
     for (auto &b : boundary)
       if (b.second.data)
         b.second.data->set_time(t);
-    // the data of a boundary face, at its centre
-    auto boundary_data = [&](const Face &face) {
-      State g;
-      if (face.condition.data)
-        for (unsigned int c = 0; c < nc; ++c)
-          g[c] = face.condition.data->value(face.center, c);
-      return g;
-    };
-    constexpr bool physics_variables_possible = internal::has_limiting_variables<Physics>::value;
-    if constexpr (physics_variables_possible)
+    if constexpr (internal::has_limiting_variables<Physics>::value)
       if (type == LimiterType::physics_variables)
         {
           limiting_values.resize(cells.n_cells());
           for (unsigned int i = 0; i < cells.n_cells(); ++i)
             limiting_values[i] = physics.limiting_variables(average(i), coefficients[i]);
         }
-
     unsigned int n_troubled = 0;
+    double      *u_data     = u.begin();
     for (unsigned int i = 0; i < cells.n_owned(); ++i)
       {
-        const State avg  = average(i);
-        const auto &a    = coefficients[i];
-        double     *x    = u_data + base[i];
-        const Face *face = &faces[i * n_faces];
-
-        // the neighbour average across face f (and the neighbour's
-        // coefficients); false at an outflow boundary
-        auto neighbor_average = [&](const unsigned int f, State &result,
-                                    const std::array<double, Physics::n_coefficients> *&a_nb) {
-          a_nb = &a;
-          if (face[f].neighbor >= 0)
-            {
-              result = average(face[f].neighbor);
-              a_nb   = &coefficients[face[f].neighbor];
-              return true;
-            }
-          if (!face[f].has_condition || face[f].condition.kind == BoundaryKind::outflow)
-            return false;
-          Tensor<1, dim> n;
-          n[f / 2] = (f % 2 == 0) ? -1. : 1.;
-          result   = physics.boundary_state(face[f].condition.kind, avg, n, boundary_data(face[f]), a);
-          return true;
-        };
-
-        // per direction: jumps to the faces and the slope, in the variables
-        // the limiter works on (components or characteristic fields), and
-        // the neighbour differences; the limited slopes only for a troubled
-        // cell
-        bool                                     is_troubled = false;
-        std::array<Tensor<2, nc>, dim>           R; // characteristic: right eigenvectors
-        std::array<Tensor<2, nc>, dim>           J; // physics_variables: dW/dU
-        std::array<State, dim>                   slope, dp_used, dm_used;
-        std::array<double, dim>                  Mh2;
-        for (int d = 0; d < dim; ++d)
-          {
-            const unsigned int stride = d == 0 ? 1 : n1;
-            State              avg_m, avg_p, jump_p, jump_m;
-            const std::array<double, Physics::n_coefficients> *a_m, *a_p;
-            const bool has_m = neighbor_average(2 * d, avg_m, a_m);
-            const bool has_p = neighbor_average(2 * d + 1, avg_p, a_p);
-            for (unsigned int c = 0; c < nc; ++c)
-              {
-                const double *xc = x + c * n_modes;
-                for (unsigned int k = 1; k < n1; ++k)
-                  {
-                    const double mode = xc[k * stride];
-                    jump_p[c] += mode * at_1[k];
-                    jump_m[c] -= mode * at_0[k];
-                  }
-                slope[d][c] = xc[stride] * at_1[1];
-              }
-            State dp = has_p ? avg_p - avg : State(), dm = has_m ? avg - avg_m : State();
-            // the traces at the two faces (for limiter_boundary())
-            const State face_value[2] = {avg - jump_m, avg + jump_p};
-            Tensor<2, nc> L;
-            if constexpr (physics_variables_possible)
-              if (type == LimiterType::physics_variables)
-                {
-                  const State &W = limiting_values[i];
-                  J[d]           = physics.limiting_jacobian(avg, a);
-                  if (has_p)
-                    dp = (face[2 * d + 1].neighbor >= 0 ?
-                            limiting_values[face[2 * d + 1].neighbor] :
-                            physics.limiting_variables(avg_p, *a_p)) -
-                         W;
-                  if (has_m)
-                    dm = W - (face[2 * d].neighbor >= 0 ? limiting_values[face[2 * d].neighbor] :
-                                                          physics.limiting_variables(avg_m, *a_m));
-                  jump_p   = J[d] * jump_p;
-                  jump_m   = J[d] * jump_m;
-                  slope[d] = J[d] * slope[d];
-                }
-            if (type == LimiterType::characteristic)
-              {
-                Tensor<1, dim> n;
-                n[d] = 1.;
-                physics.eigenvectors(avg, n, a, L, R[d]);
-                jump_p   = L * jump_p;
-                jump_m   = L * jump_m;
-                slope[d] = L * slope[d];
-                dp       = L * dp;
-                dm       = L * dm;
-              }
-            // per field: whether the difference across the face is known
-            std::array<bool, nc> known_p, known_m;
-            known_p.fill(has_p);
-            known_m.fill(has_m);
-            if constexpr (internal::has_limiter_boundary<Physics, dim>::value)
-              for (const unsigned int f : {2 * d, 2 * d + 1})
-                {
-                  if (face[f].neighbor >= 0 || !face[f].has_condition)
-                    continue;
-                  Tensor<1, dim> n;
-                  n[d]         = (f % 2 == 0) ? -1. : 1.;
-                  const auto o = physics.limiter_boundary(
-                    face[f].condition.kind, avg, face_value[f % 2], n, boundary_data(face[f]), a,
-                    type == LimiterType::characteristic ? &L : nullptr);
-                  if (!o)
-                    continue;
-                  (f % 2 == 0 ? dm : dp) = (f % 2 == 0 ? -1. : 1.) * o->difference;
-                  (f % 2 == 0 ? known_m : known_p) = o->known;
-                }
-            const double h = cells.extent(i, d);
-            Mh2[d]         = M * h * h;
-            for (unsigned int c = 0; c < nc; ++c)
-              {
-                // at an outflow boundary the missing difference does not limit
-                dp_used[d][c] = known_p[c] ? dp[c] : dm[c];
-                dm_used[d][c] = known_m[c] ? dm[c] : dp[c];
-                if (internal::minmod_tvb(jump_p[c], dp_used[d][c], dm_used[d][c], Mh2[d]) !=
-                      jump_p[c] ||
-                    internal::minmod_tvb(jump_m[c], dp_used[d][c], dm_used[d][c], Mh2[d]) !=
-                      jump_m[c])
-                  is_troubled = true;
-              }
-          }
-        troubled[i] = is_troubled;
-        if (!is_troubled)
-          continue;
-        ++n_troubled;
-        for (int d = 0; d < dim; ++d)
-          {
-            State s;
-            for (unsigned int c = 0; c < nc; ++c)
-              s[c] = internal::minmod_tvb(slope[d][c], dp_used[d][c], dm_used[d][c], Mh2[d]);
-            if (type == LimiterType::characteristic)
-              s = R[d] * s;
-            else if (type == LimiterType::physics_variables)
-              s = invert(J[d]) * s;
-            const unsigned int stride = d == 0 ? 1 : n1;
-            for (unsigned int c = 0; c < nc; ++c)
-              x[c * n_modes + stride] = s[c] / at_1[1];
-          }
-        // a troubled cell keeps its average and linear modes only
-        for (unsigned int c = 0; c < nc; ++c)
-          for (unsigned int m = 1; m < n_modes; ++m)
-            if (!(m == 1 || (dim == 2 && m == n1)))
-              x[c * n_modes + m] = 0.;
+        troubled[i] = limit_cell<n1>(i, u_data + base[i]);
+        n_troubled += troubled[i];
       }
     return n_troubled;
   }

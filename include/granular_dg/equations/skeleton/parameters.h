@@ -1,0 +1,27 @@
+#pragma once
+
+#include <deal.II/base/parameter_handler.h>
+#include <deal.II/base/tensor.h>
+
+#include <string>
+
+namespace granular_dg::skeleton
+{
+  using namespace dealii;
+
+  /// What the skeleton scene reads from the prm file (subsections Mesh,
+  /// Physics, Initial condition), parsed and checked once.
+  struct SkeletonParameters
+  {
+    int            dim   = 1;
+    unsigned int   cells = 16; ///< per direction of the unit square
+    Tensor<1, 2>   velocity;
+    std::string    initial = "sin(2*pi*x)";
+    bool           periodic = true;
+
+    static void
+    declare(ParameterHandler &prm);
+    void
+    parse(ParameterHandler &prm);
+  };
+} // namespace granular_dg::skeleton
