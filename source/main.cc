@@ -47,12 +47,8 @@ namespace
     for (const auto &o : overrides)
       if (o.rfind("scene=", 0) == 0)
         override_name = Utilities::trim(o.substr(6));
-    std::ifstream in(filename);
-    if (!in)
-      throw InputError("cannot open parameter file '" + filename +
-                       "': it does not exist or is not readable");
-    if (std::filesystem::is_directory(filename))
-      throw InputError("cannot read parameter file '" + filename + "': it is a directory");
+    require_readable_parameter_file(filename);
+    std::ifstream    in(filename);
     const std::regex pattern(R"(^\s*set\s+scene\s*=\s*([^#\s]*)\s*(#.*)?$)");
     const std::regex section(R"(^\s*subsection\s)"), end(R"(^\s*end\s*(#.*)?$)");
     std::string line;

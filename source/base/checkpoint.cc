@@ -24,6 +24,31 @@ namespace granular_dg
 
     volatile std::sig_atomic_t received_signal = 0;
 
+    sigset_t
+    interrupt_signals()
+    {
+      sigset_t set;
+      sigemptyset(&set);
+      sigaddset(&set, SIGINT);
+      sigaddset(&set, SIGTERM);
+      return set;
+    }
+
+    /// While it lives, SIGINT and SIGTERM are held back (delivered when it ends).
+    struct SignalBlock
+    {
+      SignalBlock()
+      {
+        const sigset_t set = interrupt_signals();
+        sigprocmask(SIG_BLOCK, &set, &previous);
+      }
+      ~SignalBlock()
+      {
+        sigprocmask(SIG_SETMASK, &previous, nullptr);
+      }
+      sigset_t previous;
+    };
+
     void
     on_interrupt(const int signal)
     {
@@ -433,27 +458,10 @@ namespace granular_dg
     sigaction(SIGTERM, &previous_term, nullptr);
   }
 
-  SignalBlock::SignalBlock()
-  {
-    sigset_t set;
-    sigemptyset(&set);
-    sigaddset(&set, SIGINT);
-    sigaddset(&set, SIGTERM);
-    sigprocmask(SIG_BLOCK, &set, &previous);
-  }
-
-  SignalBlock::~SignalBlock()
-  {
-    sigprocmask(SIG_SETMASK, &previous, nullptr);
-  }
-
   void
   block_interrupts_until_exit()
   {
-    sigset_t set;
-    sigemptyset(&set);
-    sigaddset(&set, SIGINT);
-    sigaddset(&set, SIGTERM);
+    sigset_t set = interrupt_signals();
     sigprocmask(SIG_BLOCK, &set, nullptr);
   }
 

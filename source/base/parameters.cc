@@ -219,18 +219,22 @@ namespace granular_dg
   } // namespace
 
   void
+  require_readable_parameter_file(const std::string &filename)
+  {
+    std::ifstream in(filename);
+    if (!in)
+      throw InputError("cannot open parameter file '" + filename +
+                       "': it does not exist or is not readable");
+    if (std::filesystem::is_directory(filename))
+      throw InputError("cannot read parameter file '" + filename + "': it is a directory");
+  }
+
+  void
   parse_parameters(ParameterHandler               &prm,
                    const std::string              &filename,
                    const std::vector<std::string> &overrides)
   {
-    {
-      std::ifstream in(filename);
-      if (!in)
-        throw InputError("cannot open parameter file '" + filename +
-                         "': it does not exist or is not readable");
-      if (std::filesystem::is_directory(filename))
-        throw InputError("cannot read parameter file '" + filename + "': it is a directory");
-    }
+    require_readable_parameter_file(filename);
     try
       {
         // undeclared entries are errors: a typo must never be ignored

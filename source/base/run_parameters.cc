@@ -84,9 +84,9 @@ namespace granular_dg
       prm.declare_entry("degrees", "0,1,2,3,4", Patterns::List(Patterns::Integer(0, 4)),
                         "Degrees of the study.");
       prm.declare_entry("cells", "16,32,64,128", Patterns::List(Patterns::Integer(1)),
-                        "Numbers of cells of the study, coarse to fine: per direction of the "
-                        "mesh (every direction is refined), or per unit length of edge "
-                        "(network).");
+                        "Numbers of cells of the study, coarse to fine, per direction of "
+                        "the mesh (every direction is refined) or as the scene's doc/ page "
+                        "defines them.");
       prm.declare_entry("CFL numbers", "", Patterns::Anything(),
                         "One CFL number per entry of Convergence/degrees (comma-separated); "
                         "empty: Time stepping/CFL number for all.");

@@ -238,20 +238,6 @@ namespace granular_dg
     struct sigaction previous_int, previous_term;
   };
 
-  /// While it lives, SIGINT and SIGTERM are held back (delivered when it ends).
-  class SignalBlock
-  {
-  public:
-    SignalBlock();
-    ~SignalBlock();
-    SignalBlock(const SignalBlock &) = delete;
-    SignalBlock &
-    operator=(const SignalBlock &) = delete;
-
-  private:
-    sigset_t previous;
-  };
-
   /// Hold back SIGINT and SIGTERM for the rest of the process: a run that
   /// stops on a signal writes its final checkpoint and summary whatever
   /// further signals arrive.

@@ -76,6 +76,10 @@ namespace granular_dg
                 const std::vector<std::string> &parameters,
                 bool                            time_dependent = true);
 
+  /// An InputError unless filename is a readable file.
+  void
+  require_readable_parameter_file(const std::string &filename);
+
   /// Parse a file into prm and apply "Section/sub/name=value" overrides;
   /// deal.II's errors become one-line InputErrors.
   void

@@ -2,6 +2,7 @@
 
 #include <deal.II/base/quadrature_lib.h>
 
+#include <granular_dg/dg/cell_quadrature.h>
 #include <granular_dg/dg/modal_layout.h>
 
 #include <algorithm>
@@ -24,12 +25,9 @@ namespace granular_dg::dg
     void
     reinit(const ModalLayout<dim> &cells)
     {
-      layout                 = &cells;
+      layout = &cells;
+      quadrature.reinit(cells);
       const unsigned int n1d = cells.degree() + 1;
-      const QGauss<1>    q(n1d + 1);
-      gauss.clear();
-      for (const auto &x : q.get_points())
-        gauss.push_back(legendre_values(n1d, x[0]));
       at = {{legendre_values(n1d, 0.), legendre_values(n1d, 0.5), legendre_values(n1d, 1.)}};
     }
 
@@ -40,13 +38,12 @@ namespace granular_dg::dg
     {
       double                          low = std::numeric_limits<double>::max();
       std::array<const double *, dim> v;
-      const unsigned int              n = gauss.size();
-      const unsigned int              n_points = dim == 1 ? n : n * n;
-      for (unsigned int p = 0; p < n_points; ++p)
+      const unsigned int              n = quadrature.n_points_1d();
+      for (unsigned int p = 0; p < quadrature.n_points(); ++p)
         {
           unsigned int r = p;
           for (int d = 0; d < dim; ++d, r /= n)
-            v[d] = gauss[r % n].data();
+            v[d] = quadrature.basis_1d(r % n).data();
           low = std::min(low, layout->value(u, c, i, v));
         }
       for (unsigned int f = 0; f < 2 * dim; ++f)
@@ -78,7 +75,7 @@ namespace granular_dg::dg
 
   private:
     const ModalLayout<dim>            *layout = nullptr;
-    std::vector<std::vector<double>>   gauss;
+    CellQuadrature<dim>                quadrature;
     std::array<std::vector<double>, 3> at;
   };
 } // namespace granular_dg::dg

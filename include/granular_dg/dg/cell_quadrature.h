@@ -75,6 +75,18 @@ namespace granular_dg::dg
       return x;
     }
 
+    /// the 1D Gauss points and the Legendre values there (basis(i)[k] = L_k(xi_i))
+    unsigned int
+    n_points_1d() const
+    {
+      return n_q_1d;
+    }
+    const std::vector<double> &
+    basis_1d(const unsigned int i) const
+    {
+      return basis[i];
+    }
+
     /// all components at point q of owned cell c
     template <int n_components, typename VectorType>
     Tensor<1, n_components>

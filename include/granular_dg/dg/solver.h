@@ -83,6 +83,9 @@ namespace granular_dg::dg
     post_stage(VectorType &u, double stage_time, double weight);
     Inadmissible
     inadmissible(const AdmissibilityReport &report, double t, bool initial) const;
+    /// Inadmissible unless u passes the operator's and the scene's checks.
+    void
+    check(const VectorType &u, double t, bool initial) const;
     /// L1, L2, Linf per component against the exact solution at t
     std::vector<std::array<double, 3>>
     errors(double t) const;

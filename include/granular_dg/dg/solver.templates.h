@@ -188,13 +188,20 @@ namespace granular_dg::dg
 
   template <int dim, typename Physics>
   void
+  Solver<dim, Physics>::check(const VectorType &u, const double t, const bool initial) const
+  {
+    auto report = op->check_admissibility(u);
+    if (report.ok)
+      report = first_failure(hooks.check_admissibility(u), u.get_mpi_communicator());
+    if (!report.ok)
+      throw inadmissible(report, t, initial);
+  }
+
+  template <int dim, typename Physics>
+  void
   Solver<dim, Physics>::check_initial_state(const double t)
   {
-    auto report = op->check_admissibility(solution);
-    if (report.ok)
-      report = first_failure(hooks.check_admissibility(solution), solution.get_mpi_communicator());
-    if (!report.ok)
-      throw inadmissible(report, t, true);
+    check(solution, t, true);
   }
 
   template <int dim, typename Physics>
@@ -226,11 +233,7 @@ namespace granular_dg::dg
       hooks.post_limiter(u, stage_time);
     }
     StepPhases::Scope scope(phases, StepPhases::admissibility);
-    auto              report = op->check_admissibility(u);
-    if (report.ok)
-      report = first_failure(hooks.check_admissibility(u), u.get_mpi_communicator());
-    if (!report.ok)
-      throw inadmissible(report, stage_time, false);
+    check(u, stage_time, false);
   }
 
   template <int dim, typename Physics>

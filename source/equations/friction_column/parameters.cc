@@ -72,8 +72,10 @@ namespace granular_dg::column
   }
 
   void
-  ColumnParameters::parse(ParameterHandler &prm, const double final_time)
+  ColumnParameters::parse(ParameterHandler &prm, const RunParameters &run,
+                          const dg::DiscretizationParameters &)
   {
+    const double final_time = run.final_time;
     ColumnParameters &p = *this;
     prm.enter_subsection("Physics");
     p.physics.m         = prm.get_double("stress exponent m");

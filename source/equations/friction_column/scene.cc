@@ -13,6 +13,7 @@
 #include <granular_dg/base/run_parameters.h>
 #include <granular_dg/base/scene.h>
 #include <granular_dg/dg/parameters.h>
+#include <granular_dg/dg/scene_entry.h>
 #include <granular_dg/dg/solver.h>
 #include <granular_dg/equations/friction_column/closed_form.h>
 #include <granular_dg/equations/friction_column/diagnostics.h>
@@ -57,15 +58,10 @@ namespace granular_dg::column
     }
 
     void
-    run(ParameterHandler &prm)
+    run(const RunParameters &common, const dg::DiscretizationParameters &method,
+        const ColumnParameters &p)
     {
-      RunParameters common;
-      common.parse(prm);
-      dg::DiscretizationParameters method;
-      method.parse(prm, common);
-      ColumnParameters p;
-      p.parse(prm, common.final_time);
-      const System           system(p.physics);
+      const System system(p.physics);
       require(std::isfinite(system.stress(p.u_b)) && std::isfinite(system.sound_speed(p.u_b)),
               "Physics/wall strain", p.u_b,
               "a strain whose stress |u_b|^m and wave speed are finite in double precision "
@@ -83,18 +79,10 @@ namespace granular_dg::column
         dg::run_simulation(make_scene(p, common, p.cells), common, method);
     }
 
-    void
-    declare(ParameterHandler &prm)
-    {
-      RunParameters::declare(prm);
-      dg::DiscretizationParameters::declare(prm, dg::local_lax_friedrichs_name);
-      ColumnParameters::declare(prm);
-    }
-
-    const RegisterScene registration(
-      {"column",
-       "granular column with Coulomb wall friction (dynamical Janssen model), "
-       "u_t - v_z = 0, v_t + sigma(u)_z - G in -sgn(v) sigma(u), 1D",
-       declare, run});
+    const RegisterScene registration(dg::scene_entry<ColumnParameters>(
+      "column",
+      "granular column with Coulomb wall friction (dynamical Janssen model), "
+      "u_t - v_z = 0, v_t + sigma(u)_z - G in -sgn(v) sigma(u), 1D",
+      dg::local_lax_friedrichs_name, "", run));
   } // namespace
 } // namespace granular_dg::column

@@ -78,7 +78,8 @@ namespace granular_dg::hopper
   }
 
   void
-  Parameters::parse(ParameterHandler &prm)
+  Parameters::parse(ParameterHandler &prm, const RunParameters &run,
+                    const dg::DiscretizationParameters &)
   {
     Parameters &p = *this;
     prm.enter_subsection("Hopper");
@@ -138,5 +139,8 @@ namespace granular_dg::hopper
                 p.scan_to, "an angle in degrees in [upper half-angle from, 90)");
         require(p.scan_step > 0, "Scan/upper half-angle step", p.scan_step, "must be > 0");
       }
+    require(!run.resume || p.mode == Mode::march, "Checkpoint/resume", "true",
+            "false in Hopper/mode = " + mode_names.name(p.mode) +
+              " (it has no time loop to continue)");
   }
 } // namespace granular_dg::hopper

@@ -16,6 +16,7 @@
 #include <granular_dg/base/scene.h>
 #include <granular_dg/base/time_loop.h>
 #include <granular_dg/dg/parameters.h>
+#include <granular_dg/dg/scene_entry.h>
 #include <granular_dg/dg/solver.h>
 #include <granular_dg/equations/hopper_stress/diagnostics.h>
 #include <granular_dg/equations/hopper_stress/parameters.h>
@@ -202,25 +203,9 @@ namespace granular_dg::hopper
     }
 
     void
-    declare_all(ParameterHandler &prm)
+    run(const RunParameters &common, const dg::DiscretizationParameters &method,
+        const Parameters &p)
     {
-      RunParameters::declare(prm);
-      dg::DiscretizationParameters::declare(prm, numerical_flux_names.selection());
-      Parameters::declare(prm);
-    }
-
-    void
-    run(ParameterHandler &prm)
-    {
-      RunParameters common;
-      common.parse(prm);
-      dg::DiscretizationParameters method;
-      method.parse(prm, common);
-      Parameters p;
-      p.parse(prm);
-      require(!common.resume || p.mode == Mode::march, "Checkpoint/resume", "true",
-              "false in Hopper/mode = " + mode_names.name(p.mode) +
-                " (it has no time loop to continue)");
       if (p.mode == Mode::march)
         return run_march(p, common, method);
       if (p.mode == Mode::radial)
@@ -232,10 +217,10 @@ namespace granular_dg::hopper
         run_scan(p, common, method.degree);
     }
 
-    const RegisterScene registration(
-      {"hopper",
-       "steady Mohr-Coulomb stresses in a wedge or cone hopper, marched in tau = -ln(r/r0) "
-       "(Gremaud & Matthews); radial fields, wall-angle transitions, the Fig. 9 scan",
-       declare_all, run});
+    const RegisterScene registration(dg::scene_entry<Parameters>(
+      "hopper",
+      "steady Mohr-Coulomb stresses in a wedge or cone hopper, marched in tau = -ln(r/r0) "
+      "(Gremaud & Matthews); radial fields, wall-angle transitions, the Fig. 9 scan",
+      numerical_flux_names.selection(), "", run));
   } // namespace
 } // namespace granular_dg::hopper

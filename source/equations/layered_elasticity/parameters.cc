@@ -218,8 +218,10 @@ namespace granular_dg::elasticity
 
 
   void
-  LayeredParameters::parse(ParameterHandler &prm)
+  LayeredParameters::parse(ParameterHandler &prm, const RunParameters &run,
+                           const dg::DiscretizationParameters &method)
   {
+    final_time = run.final_time;
     prm.enter_subsection("Mesh");
     dim = prm.get_integer("dimension");
     lo  = Point<2>(prm.get_double("x min"), prm.get_double("y min"));
@@ -231,12 +233,7 @@ namespace granular_dg::elasticity
     law = law_names.parse("Physics/stress law", prm.get("stress law"));
     prm.leave_subsection();
     layers = parse_layers(prm, dim);
-    prm.enter_subsection("Discretization");
-    flux = numerical_flux_names.parse("Discretization/numerical flux", prm.get("numerical flux"));
-    prm.leave_subsection();
-    prm.enter_subsection("Time stepping");
-    final_time = prm.get_double("final time");
-    prm.leave_subsection();
+    flux = numerical_flux_names.parse("Discretization/numerical flux", method.flux);
     require(hi[0] > lo[0], "Mesh/x max", hi[0], "must be > x min");
     require(dim == 1 || hi[1] > lo[1], "Mesh/y max", hi[1], "must be > y min");
     parse_sides(prm, *this);

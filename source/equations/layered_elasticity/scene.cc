@@ -22,6 +22,7 @@
 #include <granular_dg/dg/parameters.h>
 #include <granular_dg/dg/positivity_limiter.h>
 #include <granular_dg/dg/reference_solution.h>
+#include <granular_dg/dg/scene_entry.h>
 #include <granular_dg/dg/solver.h>
 #include <granular_dg/equations/layered_elasticity/diagnostics.h>
 #include <granular_dg/equations/layered_elasticity/parameters.h>
@@ -36,28 +37,17 @@ namespace granular_dg::elasticity
 {
   namespace
   {
-    /// (strain or stress, velocity) expressions -> conserved (strain, rho u),
-    /// with the material of the point.
+    /// A Function of dim + 1 components made from the expressions f of the
+    /// prm file (and their time) and the layers.
     template <int dim>
-    class PrimitiveToConserved : public Function<dim>
+    class LayeredData : public Function<dim>
     {
     public:
-      PrimitiveToConserved(std::shared_ptr<Function<dim>> f, const System<dim> &system,
-                           const Layers &layers, const bool stress_given)
+      LayeredData(std::shared_ptr<Function<dim>> f, const Layers &layers)
         : Function<dim>(dim + 1)
         , f(std::move(f))
-        , system(system)
         , layers(layers)
-        , stress_given(stress_given)
       {}
-      double
-      value(const Point<dim> &p, const unsigned int c) const override
-      {
-        const auto a = system.coefficients(layers.id(p));
-        if (c > 0)
-          return a[density] * f->value(p, c);
-        return stress_given ? system.strain_of_stress(f->value(p, 0), a) : f->value(p, 0);
-      }
       void
       set_time(const double t) override
       {
@@ -65,27 +55,51 @@ namespace granular_dg::elasticity
         f->set_time(t);
       }
 
-    private:
+    protected:
       std::shared_ptr<Function<dim>> f;
-      const System<dim>              system;
       const Layers                   layers;
-      const bool                     stress_given;
     };
 
-    /// Boundary data in the layout System::boundary_state() expects.
+    /// (strain or stress, velocity) expressions -> conserved (strain, rho u),
+    /// with the material of the point.
     template <int dim>
-    class BoundaryData : public Function<dim>
+    class PrimitiveToConserved : public LayeredData<dim>
     {
     public:
-      BoundaryData(std::shared_ptr<Function<dim>> f, const Side side, const Layers &layers)
-        : Function<dim>(dim + 1)
-        , f(std::move(f))
-        , side(side)
-        , layers(layers)
+      PrimitiveToConserved(std::shared_ptr<Function<dim>> f, const System<dim> &system,
+                           const Layers &layers, const bool stress_given)
+        : LayeredData<dim>(std::move(f), layers)
+        , system(system)
+        , stress_given(stress_given)
       {}
       double
       value(const Point<dim> &p, const unsigned int c) const override
       {
+        const auto a = system.coefficients(this->layers.id(p));
+        const auto v = this->f->value(p, c);
+        if (c > 0)
+          return a[density] * v;
+        return stress_given ? system.strain_of_stress(v, a) : v;
+      }
+
+    private:
+      const System<dim> system;
+      const bool        stress_given;
+    };
+
+    /// Boundary data in the layout System::boundary_state() expects.
+    template <int dim>
+    class BoundaryData : public LayeredData<dim>
+    {
+    public:
+      BoundaryData(std::shared_ptr<Function<dim>> f, const Side side, const Layers &layers)
+        : LayeredData<dim>(std::move(f), layers)
+        , side(side)
+      {}
+      double
+      value(const Point<dim> &p, const unsigned int c) const override
+      {
+        const auto &f = this->f;
         switch (side)
           {
             case Side::wall:
@@ -93,22 +107,15 @@ namespace granular_dg::elasticity
             case Side::traction:
               return c == 0 ? f->value(p, 0) : 0.;
             case Side::dirichlet:
-              return (c == 0 ? 1. : layers.material(layers.id(p)).rho) * f->value(p, c);
+              return (c == 0 ? 1. : this->layers.material(this->layers.id(p)).rho) *
+                     f->value(p, c);
             default:
               return 0.;
           }
       }
-      void
-      set_time(const double t) override
-      {
-        Function<dim>::set_time(t);
-        f->set_time(t);
-      }
 
     private:
-      std::shared_ptr<Function<dim>> f;
-      const Side                     side;
-      const Layers                   layers;
+      const Side side;
     };
 
     template <int dim>
@@ -402,33 +409,19 @@ namespace granular_dg::elasticity
     }
 
     void
-    declare(ParameterHandler &prm)
+    run_scene(const RunParameters &common, const dg::DiscretizationParameters &method,
+              const LayeredParameters &p)
     {
-      RunParameters::declare(prm);
-      dg::DiscretizationParameters::declare(prm, numerical_flux_names.selection(),
-                                            System<1>::limiting_variables_name);
-      LayeredParameters::declare(prm);
-    }
-
-    void
-    run_scene(ParameterHandler &prm)
-    {
-      RunParameters common;
-      common.parse(prm);
-      dg::DiscretizationParameters method;
-      method.parse(prm, common, System<1>::limiting_variables_name);
-      LayeredParameters p;
-      p.parse(prm);
       if (p.dim == 1)
         run<1>(p, common, method);
       else
         run<2>(p, common, method);
     }
 
-    const RegisterScene registration(
-      {"layered_strip",
-       "nonlinear elasticity eps_t - div u = 0, (rho u)_t - grad sigma(eps) = 0 in a layered "
-       "(or homogeneous) medium, 1D or 2D",
-       declare, run_scene});
+    const RegisterScene registration(dg::scene_entry<LayeredParameters>(
+      "layered_strip",
+      "nonlinear elasticity eps_t - div u = 0, (rho u)_t - grad sigma(eps) = 0 in a layered "
+      "(or homogeneous) medium, 1D or 2D",
+      numerical_flux_names.selection(), System<1>::limiting_variables_name, run_scene));
   } // namespace
 } // namespace granular_dg::elasticity

@@ -10,6 +10,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numeric>
 #include <optional>
 
 namespace granular_dg::network
@@ -206,19 +207,18 @@ namespace granular_dg::network
   unsigned long
   NetworkProblem::n_dofs() const
   {
-    unsigned long n = 1;
-    for (const auto &e : edge)
-      n += e->dof_handler.n_dofs();
-    return n;
+    // the edges' modes and the vertex value
+    return 1 + std::accumulate(edge.begin(), edge.end(), 0ul, [](unsigned long n, const auto &e) {
+             return n + e->dof_handler.n_dofs();
+           });
   }
 
   unsigned long
   NetworkProblem::n_cells() const
   {
-    unsigned long n = 0;
-    for (const auto &e : edge)
-      n += e->tria.n_active_cells();
-    return n;
+    return std::accumulate(edge.begin(), edge.end(), 0ul, [](unsigned long n, const auto &e) {
+      return n + e->tria.n_active_cells();
+    });
   }
 
   EvolutionInfo

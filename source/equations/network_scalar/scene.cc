@@ -12,6 +12,7 @@
 #include <granular_dg/base/run_parameters.h>
 #include <granular_dg/base/scene.h>
 #include <granular_dg/dg/parameters.h>
+#include <granular_dg/dg/scene_entry.h>
 #include <granular_dg/equations/network_scalar/examples.h>
 #include <granular_dg/equations/network_scalar/network.h>
 #include <granular_dg/equations/network_scalar/system.h>
@@ -59,11 +60,29 @@ namespace granular_dg::network
       return "Edge " + std::to_string(i + 1);
     }
 
-    void
-    declare(ParameterHandler &prm)
+    /// Everything the network scene reads from the prm file: the graph,
+    /// the data of its edges, the method on it, the vertex value, the exact
+    /// solution and the CFL numbers of a convergence study.
+    struct Case
     {
-      RunParameters::declare(prm);
-      dg::DiscretizationParameters::declare(prm, numerical_flux_names.selection());
+      static void
+      declare(ParameterHandler &prm);
+      void
+      parse(ParameterHandler &prm, const RunParameters &common,
+            const dg::DiscretizationParameters &method);
+
+      Graph                          graph;
+      std::vector<EdgeData>          data;
+      std::vector<std::string>       initial_text;
+      Discretisation                 disc;
+      std::optional<double>          vertex_value;
+      std::shared_ptr<ExactSolution> exact;
+      std::vector<double>            cfl;
+    };
+
+    void
+    Case::declare(ParameterHandler &prm)
+    {
       // the paper's scheme unless the file says otherwise
       prm.enter_subsection("Discretization");
       prm.set("degree", "0");
@@ -131,16 +150,6 @@ namespace granular_dg::network
       prm.leave_subsection();
     }
 
-    struct Case
-    {
-      Graph                          graph;
-      std::vector<EdgeData>          data;
-      std::vector<std::string>       initial_text;
-      Discretisation                 disc;
-      std::optional<double>          vertex_value;
-      std::shared_ptr<ExactSolution> exact;
-      std::vector<double>            cfl;
-    };
 
     /// The initial data as the exact solution: a stationary state.
     class InitialData : public ExactSolution
@@ -230,11 +239,14 @@ namespace granular_dg::network
         }
     }
 
-    Case
-    make_case(ParameterHandler &prm, const RunParameters &common,
-              const dg::DiscretizationParameters &method)
+    void
+    Case::parse(ParameterHandler &prm, const RunParameters &common,
+                const dg::DiscretizationParameters &method)
     {
-      Case c;
+      if (Utilities::MPI::n_mpi_processes(MPI_COMM_WORLD) > 1)
+        throw InputError("the network scene runs on one MPI rank (its edges are small serial "
+                         "1D meshes): run it without mpirun");
+      Case &c = *this;
       c.disc.degree         = method.degree;
       c.disc.flux           = numerical_flux_names.parse("Discretization/numerical flux",
                                                          method.flux);
@@ -349,21 +361,11 @@ namespace granular_dg::network
                 "Time stepping/integrator", "forward_euler",
                 "auto or ssprk3 at degree " + std::to_string(p) +
                   " (forward Euler is unstable with DG of degree >= 1)");
-      return c;
     }
 
     void
-    run(ParameterHandler &prm)
+    run(const RunParameters &common, const dg::DiscretizationParameters &, const Case &c)
     {
-      if (Utilities::MPI::n_mpi_processes(MPI_COMM_WORLD) > 1)
-        throw InputError("the network scene runs on one MPI rank (its edges are small serial "
-                         "1D meshes): run it without mpirun");
-      RunParameters common;
-      common.parse(prm);
-      dg::DiscretizationParameters method;
-      method.parse(prm, common);
-      // build (and so validate) everything before anything is written
-      const Case c = make_case(prm, common, method);
       if (common.convergence)
         require(static_cast<bool>(c.exact), "Network/exact solution", "none",
                 "an exact solution: a convergence study measures errors");
@@ -379,10 +381,10 @@ namespace granular_dg::network
         run_network(c.graph, c.data, c.disc, c.vertex_value, c.exact.get(), common, true);
     }
 
-    const RegisterScene registration(
-      {"network",
-       "scalar conservation laws u_t + f_k(u)_x = 0 on a star network with a vertex control "
-       "volume (linear, Burgers, traffic fluxes)",
-       declare, run});
+    const RegisterScene registration(dg::scene_entry<Case>(
+      "network",
+      "scalar conservation laws u_t + f_k(u)_x = 0 on a star network with a vertex control "
+      "volume (linear, Burgers, traffic fluxes)",
+      numerical_flux_names.selection(), "", run));
   } // namespace
 } // namespace granular_dg::network

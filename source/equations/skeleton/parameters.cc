@@ -27,7 +27,8 @@ namespace granular_dg::skeleton
   }
 
   void
-  SkeletonParameters::parse(ParameterHandler &prm)
+  SkeletonParameters::parse(ParameterHandler &prm, const RunParameters &,
+                            const dg::DiscretizationParameters &)
   {
     prm.enter_subsection("Mesh");
     dim      = prm.get_integer("dimension");

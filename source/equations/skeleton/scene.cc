@@ -15,6 +15,7 @@
 #include <granular_dg/base/run_parameters.h>
 #include <granular_dg/base/scene.h>
 #include <granular_dg/dg/parameters.h>
+#include <granular_dg/dg/scene_entry.h>
 #include <granular_dg/dg/solver.h>
 #include <granular_dg/equations/skeleton/parameters.h>
 #include <granular_dg/equations/skeleton/system.h>
@@ -110,32 +111,19 @@ namespace granular_dg::skeleton
     }
 
     void
-    declare(ParameterHandler &prm)
+    run_scene(const RunParameters &common, const dg::DiscretizationParameters &method,
+              const SkeletonParameters &p)
     {
-      RunParameters::declare(prm);
-      dg::DiscretizationParameters::declare(prm, numerical_flux_names.selection());
-      SkeletonParameters::declare(prm);
-    }
-
-    void
-    run_scene(ParameterHandler &prm)
-    {
-      RunParameters common;
-      common.parse(prm);
-      dg::DiscretizationParameters method;
-      method.parse(prm, common);
-      SkeletonParameters p;
-      p.parse(prm);
       if (p.dim == 1)
         run<1>(p, common, method);
       else
         run<2>(p, common, method);
     }
 
-    const RegisterScene registration(
-      {"skeleton",
-       "linear advection u_t + div(a u) = 0 on the unit interval or square: the minimal "
-       "scene to copy for a new one",
-       declare, run_scene});
+    const RegisterScene registration(dg::scene_entry<SkeletonParameters>(
+      "skeleton",
+      "linear advection u_t + div(a u) = 0 on the unit interval or square: the minimal "
+      "scene to copy for a new one",
+      numerical_flux_names.selection(), "", run_scene));
   } // namespace
 } // namespace granular_dg::skeleton

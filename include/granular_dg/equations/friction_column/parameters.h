@@ -2,6 +2,8 @@
 
 #include <deal.II/base/parameter_handler.h>
 
+#include <granular_dg/base/run_parameters.h>
+#include <granular_dg/dg/parameters.h>
 #include <granular_dg/equations/friction_column/system.h>
 
 namespace granular_dg::column
@@ -26,8 +28,9 @@ namespace granular_dg::column
 
     static void
     declare(ParameterHandler &prm);
-    /// final_time: Time stepping/final time (the closed form's range)
+    /// (the closed form's range depends on Time stepping/final time)
     void
-    parse(ParameterHandler &prm, double final_time);
+    parse(ParameterHandler &prm, const RunParameters &run,
+          const dg::DiscretizationParameters &method);
   };
 } // namespace granular_dg::column

@@ -3,6 +3,8 @@
 #include <deal.II/base/parameter_handler.h>
 
 #include <granular_dg/base/parameters.h>
+#include <granular_dg/base/run_parameters.h>
+#include <granular_dg/dg/parameters.h>
 #include <granular_dg/equations/hopper_stress/system.h>
 
 namespace granular_dg::hopper
@@ -45,6 +47,7 @@ namespace granular_dg::hopper
     static void
     declare(ParameterHandler &prm);
     void
-    parse(ParameterHandler &prm);
+    parse(ParameterHandler &prm, const RunParameters &run,
+          const dg::DiscretizationParameters &method);
   };
 } // namespace granular_dg::hopper

@@ -3,6 +3,8 @@
 #include <deal.II/base/parameter_handler.h>
 #include <deal.II/base/point.h>
 
+#include <granular_dg/base/run_parameters.h>
+#include <granular_dg/dg/parameters.h>
 #include <granular_dg/equations/layered_elasticity/system.h>
 
 #include <array>
@@ -86,6 +88,7 @@ namespace granular_dg::elasticity
     PrimitiveExpressions       initial, exact;
     bool                       exact_available = false;
     std::string                reference_file;
+    /// Time stepping/final time: the reference file's time must be it
     double                     final_time = 1.;
     bool                       positivity = false;
     /// the line y = slice_y of slice-NNNN.csv (NaN: none)
@@ -94,7 +97,8 @@ namespace granular_dg::elasticity
     static void
     declare(ParameterHandler &prm);
     void
-    parse(ParameterHandler &prm);
+    parse(ParameterHandler &prm, const RunParameters &run,
+          const dg::DiscretizationParameters &method);
   };
 
   extern const char *const side_label[4];

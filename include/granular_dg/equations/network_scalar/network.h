@@ -103,6 +103,7 @@ namespace granular_dg::network
     ~NetworkProblem() override;
 
     // ------------------------------------------------------------ Evolution
+    /// edges, vertex ends, cells and DoFs of all edges (+1: the vertex value)
     EvolutionInfo
     info() const override;
     /// Project the initial data (exact cell averages at degree 0), limit,
@@ -110,6 +111,7 @@ namespace granular_dg::network
     /// for the initial edge traces.
     double
     initialize() override;
+    /// every mode of every edge and the vertex value finite
     void
     check_initial_state(double t) override;
     /// The CFL step of the current state: cfl * min h / max |f'|, the
@@ -121,24 +123,32 @@ namespace granular_dg::network
     /// range of the data).
     void
     advance(double t, double dt) override;
+    /// the mass balance and the largest total variation so far
     void
     end_of_step(double t, double dt, unsigned long step) override;
     void
     store(Slot slot) override;
     void
     restore(Slot slot) override;
+    /// solution-NNNN.vtu (the edges in the plane, the vertex at the origin)
+    /// and profile-NNNN-edge-K.csv
     SnapshotFiles
     write_snapshot(const std::string &directory, unsigned int index, double t) override;
+    /// mass, mass balance, inflow, vertex value, TV, Rankine-Hugoniot
+    /// residual (and the errors against an exact solution)
     std::vector<std::string>
     timeseries_names() const override;
     std::string
     timeseries_comment() const override;
     std::vector<double>
     timeseries_values(double t) override;
+    /// the modes of every edge, the vertex value, the far-end inflow and the
+    /// running diagnostics
     void
     save(ByteWriter &w) override;
     void
     load(ByteReader &r) override;
+    /// summary.json: mass balance, vertex and TV diagnostics, errors
     void
     finish(double t, RunResult &result, bool write_files) override;
     void

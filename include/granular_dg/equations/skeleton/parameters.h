@@ -3,6 +3,9 @@
 #include <deal.II/base/parameter_handler.h>
 #include <deal.II/base/tensor.h>
 
+#include <granular_dg/base/run_parameters.h>
+#include <granular_dg/dg/parameters.h>
+
 #include <string>
 
 namespace granular_dg::skeleton
@@ -22,6 +25,7 @@ namespace granular_dg::skeleton
     static void
     declare(ParameterHandler &prm);
     void
-    parse(ParameterHandler &prm);
+    parse(ParameterHandler &prm, const RunParameters &run,
+          const dg::DiscretizationParameters &method);
   };
 } // namespace granular_dg::skeleton

@@ -1,0 +1,49 @@
+#pragma once
+
+#include <granular_dg/base/run_parameters.h>
+#include <granular_dg/base/scene.h>
+#include <granular_dg/dg/parameters.h>
+
+#include <functional>
+#include <string>
+
+namespace granular_dg::dg
+{
+  /**
+   * The registry entry of a DG scene: its parameters are the run's
+   * (RunParameters), the method's (DiscretizationParameters with the
+   * numerical fluxes and limiting variables its physics offers) and its own
+   * (SceneParameters: static declare(prm), then parse(prm, run, method), which
+   * may also set defaults of the sections before it); run gets all three,
+   * parsed and checked:
+   *
+   *   const RegisterScene registration(dg::scene_entry<MyParameters>(
+   *     "name", "description", my_flux_names.selection(), "", run));
+   */
+  template <typename SceneParameters>
+  Scene
+  scene_entry(const std::string &name, const std::string &description, const std::string &fluxes,
+              const std::string &physics_variables,
+              const std::function<void(const RunParameters &, const DiscretizationParameters &,
+                                       const SceneParameters &)> &run)
+  {
+    Scene s;
+    s.name        = name;
+    s.description = description;
+    s.declare     = [=](ParameterHandler &prm) {
+      RunParameters::declare(prm);
+      DiscretizationParameters::declare(prm, fluxes, physics_variables);
+      SceneParameters::declare(prm);
+    };
+    s.run = [=](ParameterHandler &prm) {
+      RunParameters common;
+      common.parse(prm);
+      DiscretizationParameters method;
+      method.parse(prm, common, physics_variables);
+      SceneParameters p;
+      p.parse(prm, common, method);
+      run(common, method, p);
+    };
+    return s;
+  }
+} // namespace granular_dg::dg
