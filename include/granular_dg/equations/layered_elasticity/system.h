@@ -272,10 +272,87 @@ namespace granular_dg::elasticity
       return std::sqrt(std::max(s, Number(0.)));
     }
 
+    /// phi(eps) = int_0^eps c(e) de: the strain part of the Riemann
+    /// invariants u.n -+ phi(eps) of the characteristic fields +-c.
+    double
+    riemann_strain(const double eps, const Coefficients<double> &a) const
+    {
+      const double K = a[modulus], rho = a[density], beta = a[nonlinearity];
+      if (law == StressLaw::exponential)
+        return 2. / std::sqrt(K * rho) * std::expm1(0.5 * K * eps);
+      if (beta == 0.)
+        return std::sqrt(K / rho) * eps;
+      const double base = std::max(K + 2. * beta * K * K * eps, 0.);
+      return (base * std::sqrt(base) - K * std::sqrt(K)) / (3. * beta * K * K * std::sqrt(rho));
+    }
+
+    /// The strain of a value of riemann_strain() (clamped where the law
+    /// loses hyperbolicity).
+    double
+    strain_of_riemann(const double phi, const Coefficients<double> &a) const
+    {
+      const double K = a[modulus], rho = a[density], beta = a[nonlinearity];
+      if (law == StressLaw::exponential)
+        return 2. / K * std::log1p(std::max(0.5 * phi * std::sqrt(K * rho), -1. + 1e-300));
+      if (beta == 0.)
+        return phi / std::sqrt(K / rho);
+      const double base = std::max(3. * beta * K * K * std::sqrt(rho) * phi + K * std::sqrt(K), 0.);
+      return (std::cbrt(base * base) - K) / (2. * beta * K * K);
+    }
+
+    /// The transmissive state: the outgoing Riemann invariant u.n - phi(eps)
+    /// (constant along the characteristic +c leaving through the face) of
+    /// the interior trace kept, the incoming one u.n + phi(eps) that of the
+    /// material at rest (0), the tangential velocity kept. A simple wave that leaves gets U_p = U_m (no
+    /// reflection); what would come in from outside is nothing. (U_p = U_m
+    /// instead lets the incoming field take the interior's value: at degree
+    /// >= 1 a neutral mode of the last cell then grows and reflects the
+    /// wave as tension, doc/layered.md.)
+    State<double>
+    outflow_state(const State<double> &U_m, const Tensor<1, dim> &n,
+                  const Coefficients<double> &a) const
+    {
+      const double rho = a[density];
+      double       un  = 0;
+      for (int d = 0; d < dim; ++d)
+        un += U_m[1 + d] * n[d] / rho;
+      const double  phi = 0.5 * (riemann_strain(U_m[0], a) - un);
+      State<double> U_p;
+      U_p[0] = strain_of_riemann(phi, a);
+      for (int d = 0; d < dim; ++d)
+        U_p[1 + d] = U_m[1 + d] - rho * (un + phi) * n[d];
+      return U_p;
+    }
+
+    /// outflow_state() lane by lane of a batch of faces.
+    template <typename Number>
+    State<Number>
+    outflow_state(const State<Number> &U_m, const Tensor<1, dim, Number> &n,
+                  const Coefficients<Number> &a) const
+    {
+      State<Number> U_p;
+      for (unsigned int v = 0; v < Number::size(); ++v)
+        {
+          State<double>        u;
+          Tensor<1, dim>       nv;
+          Coefficients<double> av;
+          for (unsigned int c = 0; c < n_components; ++c)
+            u[c] = U_m[c][v];
+          for (int d = 0; d < dim; ++d)
+            nv[d] = n[d][v];
+          for (unsigned int i = 0; i < n_coefficients; ++i)
+            av[i] = a[i][v];
+          const auto p = outflow_state(u, nv, av);
+          for (unsigned int c = 0; c < n_components; ++c)
+            U_p[c][v] = p[c];
+        }
+      return U_p;
+    }
+
     /// Exterior state of a boundary face from the kind and its data g
     /// (dim values of the Function at the point: wall velocity for a wall,
     /// prescribed traction sigma for a traction boundary (first value),
-    /// the full exterior state for Dirichlet).
+    /// the full exterior state for Dirichlet; outflow: outflow_state()).
     template <typename Number>
     State<Number>
     boundary_state(const dg::BoundaryKind         kind,
@@ -289,6 +366,7 @@ namespace granular_dg::elasticity
       switch (kind)
         {
           case dg::BoundaryKind::outflow:
+            U_p = outflow_state(U_m, normal, a);
             break;
           case dg::BoundaryKind::dirichlet:
             U_p = g;
