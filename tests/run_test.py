@@ -62,6 +62,8 @@ def main():
     p.add_argument('--expect-files', default='',
                    help='comma-separated files the (failed) run must have written, '
                         'relative to the work directory')
+    p.add_argument('--copy', action='append', default=[],
+                   help='a file to put into the work directory before the run')
     p.add_argument('--absent-files', default='',
                    help='comma-separated files the run must not have written')
     p.add_argument('--keep-output', action='store_true',
@@ -73,6 +75,8 @@ def main():
     os.makedirs(a.workdir)
     outdir = os.path.join(a.workdir, 'out')
 
+    for f in a.copy:
+        shutil.copy(f, a.workdir)
     cmd = [a.exe]
     if a.prm:
         # run on a copy in the work directory, so messages name it as a
@@ -112,7 +116,8 @@ def main():
                 sys.exit(f'run_test: the failed run did not write {missing}')
         else:
             left = [f for f in os.listdir(a.workdir)
-                    if f not in (a.name + '.result', os.path.basename(a.prm or ''))]
+                    if f not in [a.name + '.result', os.path.basename(a.prm or '')] +
+                    [os.path.basename(c) for c in a.copy]]
             if left:
                 sys.exit(f'run_test: a failed run left files behind: {left}')
         text = proc.stderr

@@ -447,22 +447,25 @@ namespace granular_dg
     struct sigaction action = {};
     action.sa_handler       = on_interrupt;
     sigemptyset(&action.sa_mask);
-    action.sa_flags = SA_RESETHAND;
+    // (no SA_RESETHAND: a second Ctrl-C while the run writes its final
+    // checkpoint must not kill it half-way; kill -9 ends a run at once)
+    action.sa_flags = 0;
     sigaction(SIGINT, &action, &previous_int);
     sigaction(SIGTERM, &action, &previous_term);
   }
 
   InterruptHandlers::~InterruptHandlers()
   {
+    if (received_signal != 0)
+      {
+        // the run stops on that signal: what follows (summary, message,
+        // exit 128 + signal) is not to be cut short by another one
+        std::signal(SIGINT, SIG_IGN);
+        std::signal(SIGTERM, SIG_IGN);
+        return;
+      }
     sigaction(SIGINT, &previous_int, nullptr);
     sigaction(SIGTERM, &previous_term, nullptr);
-  }
-
-  void
-  block_interrupts_until_exit()
-  {
-    sigset_t set = interrupt_signals();
-    sigprocmask(SIG_BLOCK, &set, nullptr);
   }
 
   int

@@ -280,8 +280,6 @@ namespace granular_dg
     auto       d        = schedule->poll(step);
     if (finished)
       d = {d.scheduled, 0, false, d.scheduled};
-    if (d.signal != 0)
-      block_interrupts_until_exit();
     std::string file;
     if (d.write)
       {
@@ -400,6 +398,9 @@ namespace granular_dg
       {
         throw RunError("benchmark: inadmissible initial state: " + f.reason);
       }
+    if (root)
+      std::cout << "  benchmark: " << info.description << "; writes " << params.directory
+                << "/benchmark.json only" << std::endl;
     problem.store(Evolution::Slot::benchmark_start);
     const double      t0   = t;
     const std::string load = load_average();

@@ -222,9 +222,11 @@ namespace granular_dg
   fnv1a(const std::string &bytes);
 
   /// While it lives, SIGINT and SIGTERM set a flag that the time loop polls
-  /// after every step (CheckpointSchedule); a second signal ends the process
-  /// at once (the handler resets on first delivery). Outside time loops the
-  /// signals keep their default action.
+  /// after every step (CheckpointSchedule): the run writes a checkpoint and
+  /// stops. Further signals change nothing (the final checkpoint and summary
+  /// are always complete, and after a stop by a signal they are ignored
+  /// until the process exits); kill -9 ends a run at once. Outside time
+  /// loops the signals keep their default action.
   class InterruptHandlers
   {
   public:
@@ -237,12 +239,6 @@ namespace granular_dg
   private:
     struct sigaction previous_int, previous_term;
   };
-
-  /// Hold back SIGINT and SIGTERM for the rest of the process: a run that
-  /// stops on a signal writes its final checkpoint and summary whatever
-  /// further signals arrive.
-  void
-  block_interrupts_until_exit();
 
   /// The signal received so far (0: none).
   int
