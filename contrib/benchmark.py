@@ -46,7 +46,7 @@ CASES = {
 
 
 # the linear stability limits of SSP-RK3 + DG P_p that the program enforces
-# (ssprk3_cfl_limit() in source/base/simulation.cc)
+# (dg::cfl_limit(ssp_rk3, p) in source/dg/parameters.cc)
 CFL_LIMITS = [1.2563, 0.4095, 0.2097, 0.13, 0.0896]
 
 

@@ -3,8 +3,9 @@
 upwind DG of degree p = 0..4 (Legendre modes) for u_t + u_x = 0: Fourier
 analysis of the semi-discrete operator, the largest nu with
 |R(nu z)| <= 1 for all its eigenvalues z, R(z) = 1 + z + z^2/2 + z^3/6.
-The values are the table of ssprk3_cfl_limit() in source/base/simulation.cc
-(rounded down there).
+The values are the ssp_rk3 row of dg::cfl_limit() in source/dg/parameters.cc
+(rounded down there; tests/unit/rk_stability_limits computes every scheme's
+row from the program's integrators and checks the table).
 
     /usr/bin/python3 contrib/dg_cfl_limits.py
 """

@@ -14,6 +14,12 @@ namespace granular_dg::dg
                                           {Engine::matrix_free, "matrix_free"},
                                           {Engine::line, "line"}});
 
+    const EnumNames<TimeScheme> time_scheme_names({{TimeScheme::ssp_rk3, "ssp_rk3"},
+                                                   {TimeScheme::lsrk_3_3, "lsrk_3_3"},
+                                                   {TimeScheme::lsrk_5_4, "lsrk_5_4"},
+                                                   {TimeScheme::lsrk_7_4, "lsrk_7_4"},
+                                                   {TimeScheme::lsrk_9_5, "lsrk_9_5"}});
+
     std::string
     limiter_selection(const std::string &physics_variables)
     {
@@ -33,25 +39,41 @@ namespace granular_dg::dg
            (dim == 1 ? points * 16. * (n_fields + 1) : 0.);
   }
 
+  std::string
+  time_scheme_name(const TimeScheme scheme)
+  {
+    return time_scheme_names.name(scheme);
+  }
+
   double
-  ssprk3_cfl_limit(const unsigned int degree)
+  cfl_limit(const TimeScheme scheme, const unsigned int degree)
   {
     // max nu = a dt/h with |R(nu z)| <= 1 for every eigenvalue z of the
-    // upwind DG operator of u_t + u_x = 0 (Fourier analysis; R the SSP-RK3
-    // stability polynomial), rounded down; contrib/dg_cfl_limits.py
-    // computes them
-    static const double limit[] = {1.2563, 0.4095, 0.2097, 0.1300, 0.0896};
-    return limit[std::min(degree, 4u)];
+    // upwind DG operator of u_t + u_x = 0 (Fourier analysis; R the scheme's
+    // stability function), rounded down; tests/unit/rk_stability_limits
+    // computes them from the integrators and checks this table
+    static const double limit[][5] = {
+      {1.2563, 0.4095, 0.2097, 0.1300, 0.0896},  // ssp_rk3
+      {1.2563, 0.4095, 0.2097, 0.1300, 0.0896},  // lsrk_3_3 (the same R(z))
+      {2.2294, 0.6754, 0.3505, 0.2193, 0.1519},  // lsrk_5_4
+      {2.5081, 0.8360, 0.4235, 0.2618, 0.1801},  // lsrk_7_4
+      {2.6026, 0.8332, 0.4270, 0.2649, 0.1827}}; // lsrk_9_5
+    return limit[static_cast<unsigned int>(scheme)][std::min(degree, 4u)];
   }
 
   void
-  require_stable_cfl(const double cfl, const unsigned int degree, const std::string &parameter)
+  require_stable_cfl(const double cfl, const TimeScheme scheme, const unsigned int degree,
+                     const std::string &parameter)
   {
-    const double limit = ssprk3_cfl_limit(degree);
+    const double limit = cfl_limit(scheme, degree);
+    std::string  table;
+    for (unsigned int p = 0; p <= 4; ++p)
+      table += (p ? ", " : "") + format_number(cfl_limit(scheme, p));
     require(cfl <= limit, parameter, cfl,
             "at most " + format_number(limit) + " at degree " + std::to_string(degree) +
-              " (the linear stability limit of SSP-RK3 with DG of degree p = 0..4: "
-              "1.2563, 0.4095, 0.2097, 0.13, 0.0896)");
+              " (the linear stability limit of " +
+              (scheme == TimeScheme::ssp_rk3 ? std::string("SSP-RK3") : time_scheme_name(scheme)) +
+              " with DG of degree p = 0..4: " + table + ")");
   }
 
   void
@@ -77,9 +99,16 @@ namespace granular_dg::dg
                       "Courant number dt * sum_d(lambda_max / h_d). SSP-RK3 with DG "
                       "of degree p is stable up to about 1/(2p+1). Allowed: (0, 1].");
     prm.declare_entry("check stability limit", "true", Patterns::Bool(),
-                      "Refuse a CFL number above SSP-RK3's linear stability limit for the "
-                      "degree (1.256, 0.4095, 0.2097, 0.13, 0.0896 for p = 0-4). false: "
-                      "run anyway, for stability studies of where the method fails.");
+                      "Refuse a CFL number above the scheme's linear stability limit for "
+                      "the degree (SSP-RK3: 1.256, 0.4095, 0.2097, 0.13, 0.0896 for p = "
+                      "0-4). false: run anyway, for stability studies of where the "
+                      "method fails.");
+    prm.declare_entry("scheme", "ssp_rk3", time_scheme_names.pattern(),
+                      "Explicit Runge-Kutta scheme: ssp_rk3 (Shu-Osher, 3 stages, order "
+                      "3; the only one with limiters and stage operations) or deal.II's "
+                      "low-storage schemes lsrk_S_O (S stages, order O), more stable per "
+                      "stage, for unlimited runs. Allowed: " +
+                        time_scheme_names.selection() + ".");
     prm.leave_subsection();
 
     const std::string limiters = limiter_selection(physics_variables);
@@ -124,10 +153,18 @@ namespace granular_dg::dg
     prm.enter_subsection("Time stepping");
     cfl                   = prm.get_double("CFL number");
     check_stability_limit = prm.get_bool("check stability limit");
+    scheme = time_scheme_names.parse("Time stepping/scheme", prm.get("scheme"));
     prm.leave_subsection();
     // (a stability study, check stability limit = false, may go beyond 1)
-    require(cfl > 0 && (cfl <= 1 || !check_stability_limit), "Time stepping/CFL number", cfl,
-            "must be in (0, 1] (SSP-RK3 DG of degree p is stable up to about 1/(2p+1))");
+    // (SSP-RK3: at most 1, also for the network's forward Euler at degree 0)
+    const double largest =
+      scheme == TimeScheme::ssp_rk3 ? 1. : std::max(1., cfl_limit(scheme, 0));
+    require(cfl > 0 && (cfl <= largest || !check_stability_limit), "Time stepping/CFL number",
+            cfl,
+            scheme == TimeScheme::ssp_rk3 ?
+              "must be in (0, 1] (SSP-RK3 DG of degree p is stable up to about 1/(2p+1))" :
+              "must be in (0, " + format_number(largest) + "] (the stability limits of " +
+                time_scheme_name(scheme) + " are in doc/program.md)");
 
     prm.enter_subsection("Limiter");
     limiter_name = prm.get("scheme");
@@ -140,6 +177,11 @@ namespace granular_dg::dg
        {LimiterType::physics_variables,
         physics_variables.empty() ? std::string("(none)") : physics_variables}});
     limiter = limiter_names.parse("Limiter/scheme", limiter_name);
+    require(scheme == TimeScheme::ssp_rk3 || limiter == LimiterType::none,
+            "Time stepping/scheme", time_scheme_name(scheme),
+            "ssp_rk3 only with Limiter/scheme = " + limiter_name +
+              " (a limiter needs a scheme of convex combinations of Euler steps; "
+              "the lsrk schemes run without limiter)");
 
     prm.enter_subsection("Output");
     profile_points = prm.get_integer("profile points per cell");
@@ -152,10 +194,10 @@ namespace granular_dg::dg
     if (!check_stability_limit)
       return;
     if (!run.convergence)
-      require_stable_cfl(cfl, degree, "Time stepping/CFL number");
+      require_stable_cfl(cfl, scheme, degree, "Time stepping/CFL number");
     else
       for (unsigned int i = 0; i < run.convergence_degrees.size(); ++i)
-        require_stable_cfl(for_study(run, i).cfl, run.convergence_degrees[i],
+        require_stable_cfl(for_study(run, i).cfl, scheme, run.convergence_degrees[i],
                            run.convergence_cfl.empty() ? "Time stepping/CFL number" :
                                                          "Convergence/CFL numbers");
   }

@@ -25,3 +25,8 @@ granular_dg_test(performance/study_quick EXE ${CMAKE_CURRENT_SOURCE_DIR}/perform
   COMPARE stdout LABELS performance)
 # (about 2 min on 2 idle cores; generous for a loaded CI machine)
 set_tests_properties(performance/study_quick PROPERTIES TIMEOUT 1200)
+# The SIMD build (VectorizedArray of the native width, cmake/simd.cmake)
+# against deal.II's width 1 on the 2D strip: 150 SSP-RK3 steps at P1-P3 with
+# both operators in one program; it fails itself if the states differ by
+# 1e-12 relative (doc/performance.md, "SIMD build").
+granular_dg_unit_test(performance/simd_widths_agree NUMDIFF -r 1e-6)

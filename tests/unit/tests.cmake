@@ -2,3 +2,9 @@
 granular_dg_unit_test(unit/elasticity_physics NUMDIFF -a 1e-7 -r 0)
 # Interface-aware flux at a material interface (issue 4): errors ~0.
 granular_dg_unit_test(unit/layered_interface NUMDIFF -a 1e-7 -r 0)
+# The CFL stability limit of every Time stepping/scheme and degree 0-4,
+# computed from the program's integrators (Fourier analysis of upwind DG),
+# and the check that the table the program enforces lies within [0.98, 1] of
+# them (the test fails itself otherwise); the orders of the schemes read off
+# their stability functions. Limits printed to 4 digits: -a 2e-4.
+granular_dg_unit_test(unit/rk_stability_limits NUMDIFF -a 2e-4 -r 0)

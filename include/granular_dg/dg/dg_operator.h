@@ -18,7 +18,7 @@
 namespace granular_dg::dg
 {
   using namespace dealii;
-  template <int dim, typename Physics>
+  template <int dim, typename Physics, int width = VectorizedArray<double>::size()>
   class DGOperator;
 
   namespace internal
@@ -50,10 +50,10 @@ namespace granular_dg::dg
      * instantiated per degree (GRANULAR_DG_INSTANTIATE_KERNELS) in their own
      * translation units; DGOperator::dispatch() picks the one of its degree.
      */
-    template <int dim, typename Physics, int fe_degree>
+    template <int dim, typename Physics, int fe_degree, int width = VectorizedArray<double>::size()>
     struct DGKernels
     {
-      const DGOperator<dim, Physics> &op;
+      const DGOperator<dim, Physics, width> &op;
 
       /// dst = R(op.time, src) (before the inverse mass matrix)
       void
@@ -69,17 +69,17 @@ namespace granular_dg::dg
       check_admissibility(const VectorType &solution) const;
 
       void
-      cell(const MatrixFree<dim, double>               &data,
+      cell(const MatrixFree<dim, double, VectorizedArray<double, width>> &data,
            VectorType                                  &dst,
            const VectorType                            &src,
            const std::pair<unsigned int, unsigned int> &cell_range) const;
       void
-      face(const MatrixFree<dim, double>               &data,
+      face(const MatrixFree<dim, double, VectorizedArray<double, width>> &data,
            VectorType                                  &dst,
            const VectorType                            &src,
            const std::pair<unsigned int, unsigned int> &face_range) const;
       void
-      boundary_face(const MatrixFree<dim, double>               &data,
+      boundary_face(const MatrixFree<dim, double, VectorizedArray<double, width>> &data,
                     VectorType                                  &dst,
                     const VectorType                            &src,
                     const std::pair<unsigned int, unsigned int> &face_range) const;
@@ -105,8 +105,13 @@ namespace granular_dg::dg
    * of the nonlinear flux). The Legendre basis is orthonormal, so on the
    * affine cells the engine accepts the inverse mass matrix is the diagonal
    * 1/|K|.
+   *
+   * width is the number of lanes of VectorizedArray<double, width>: the
+   * machine's native width by default (cmake/simd.cmake). Another width (1:
+   * the scalar operator of Debian's deal.II) runs the run-time-degree kernels
+   * only; it exists to check the SIMD build (tests/performance/simd_widths_agree).
    */
-  template <int dim, typename Physics>
+  template <int dim, typename Physics, int width>
   class DGOperator : public Operator<dim>
   {
   public:
@@ -149,7 +154,7 @@ namespace granular_dg::dg
     AdmissibilityReport
     check_admissibility(const VectorType &solution) const override;
 
-    const MatrixFree<dim, Number> &
+    const MatrixFree<dim, Number, VectorizedArray<Number, width>> &
     matrix_free() const
     {
       return data;
@@ -172,9 +177,9 @@ namespace granular_dg::dg
     }
 
   private:
-    template <int, typename, int>
+    template <int, typename, int, int>
     friend struct internal::DGKernels;
-    using VA = VectorizedArray<Number>;
+    using VA = VectorizedArray<Number, width>;
 
     /// f(kernels) with the kernels compiled for the degree of the element.
     template <typename F>
@@ -188,7 +193,7 @@ namespace granular_dg::dg
 
     Physics                 phys;
     BoundaryMap<dim>        boundary;
-    MatrixFree<dim, Number> data;
+    MatrixFree<dim, Number, VA> data;
     VectorType              inverse_mass_diagonal;
     unsigned int            degree = 0;
     /// per cell batch; per face batch, interior (m) and exterior (p) side

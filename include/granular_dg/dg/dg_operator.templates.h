@@ -17,9 +17,9 @@ namespace granular_dg::dg
     template <int fe_degree>
     constexpr int n_q_points_1d = fe_degree < 0 ? 0 : fe_degree + 2;
 
-    template <int dim, typename Number>
+    template <int dim, typename Number, std::size_t width>
     Point<dim>
-    lane_point(const Point<dim, VectorizedArray<Number>> &p, const unsigned int v)
+    lane_point(const Point<dim, VectorizedArray<Number, width>> &p, const unsigned int v)
     {
       Point<dim> x;
       for (int d = 0; d < dim; ++d)
@@ -67,15 +67,15 @@ namespace granular_dg::dg
     }
   } // namespace internal
 
-  template <int dim, typename Physics>
-  DGOperator<dim, Physics>::DGOperator(const Physics &physics, BoundaryMap<dim> bc)
+  template <int dim, typename Physics, int width>
+  DGOperator<dim, Physics, width>::DGOperator(const Physics &physics, BoundaryMap<dim> bc)
     : phys(physics)
     , boundary(std::move(bc))
   {}
 
-  template <int dim, typename Physics>
+  template <int dim, typename Physics, int width>
   void
-  DGOperator<dim, Physics>::reinit(const Mapping<dim>    &mapping,
+  DGOperator<dim, Physics, width>::reinit(const Mapping<dim>    &mapping,
                                    const DoFHandler<dim> &dof_handler)
   {
     degree = dof_handler.get_fe().degree;
@@ -87,7 +87,7 @@ namespace granular_dg::dg
     const std::vector<Quadrature<1>> quadratures = {QGauss<1>(degree + 2)};
     const AffineConstraints<double> constraints;
 
-    typename MatrixFree<dim, Number>::AdditionalData additional_data;
+    typename MatrixFree<dim, Number, VA>::AdditionalData additional_data;
     additional_data.mapping_update_flags =
       (update_gradients | update_JxW_values | update_quadrature_points |
        update_values);
@@ -98,7 +98,7 @@ namespace granular_dg::dg
       (update_JxW_values | update_quadrature_points | update_normal_vectors |
        update_values);
     additional_data.tasks_parallel_scheme =
-      MatrixFree<dim, Number>::AdditionalData::none;
+      MatrixFree<dim, Number, VA>::AdditionalData::none;
 
     const std::vector<const DoFHandler<dim> *>          dof_handlers = {&dof_handler};
     const std::vector<const AffineConstraints<double> *> constraint_list = {&constraints};
@@ -129,7 +129,7 @@ namespace granular_dg::dg
     // FE_DGQLegendre is orthonormal on the unit cell, so on affine cells the
     // mass matrix is |K| times the identity: its inverse is a diagonal vector
     data.initialize_dof_vector(inverse_mass_diagonal);
-    FEEvaluation<dim, -1, 0, n_components, Number> phi(data);
+    FEEvaluation<dim, -1, 0, n_components, Number, VA> phi(data);
     for (unsigned int cell = 0; cell < data.n_cell_batches(); ++cell)
       {
         AssertThrow(data.get_mapping_info().get_cell_type(cell) <=
@@ -145,10 +145,10 @@ namespace granular_dg::dg
       }
   }
 
-  template <int dim, typename Physics>
+  template <int dim, typename Physics, int width>
   template <typename CellOfLane>
-  typename DGOperator<dim, Physics>::template Coefficients<VectorizedArray<double>>
-  DGOperator<dim, Physics>::pack_coefficients(const unsigned int n_lanes,
+  typename DGOperator<dim, Physics, width>::template Coefficients<VectorizedArray<double, width>>
+  DGOperator<dim, Physics, width>::pack_coefficients(const unsigned int n_lanes,
                                               const CellOfLane  &cell_of_lane) const
   {
     Coefficients<VA> packed;
@@ -168,43 +168,43 @@ namespace granular_dg::dg
     return packed;
   }
 
-  template <int dim, typename Physics>
+  template <int dim, typename Physics, int width>
   void
-  DGOperator<dim, Physics>::initialize_vector(VectorType &vector) const
+  DGOperator<dim, Physics, width>::initialize_vector(VectorType &vector) const
   {
     data.initialize_dof_vector(vector);
   }
 
-  template <int dim, typename Physics>
+  template <int dim, typename Physics, int width>
   template <typename F>
   decltype(auto)
-  DGOperator<dim, Physics>::dispatch(const F &f) const
+  DGOperator<dim, Physics, width>::dispatch(const F &f) const
   {
-    if constexpr (max_compiled_degree < 0)
-      return f(internal::DGKernels<dim, Physics, -1>{*this});
+    if constexpr (max_compiled_degree < 0 || width != VectorizedArray<double>::size())
+      return f(internal::DGKernels<dim, Physics, -1, width>{*this});
     else
       {
         static_assert(max_compiled_degree == 4, "dispatch() lists the degrees 0-4");
         switch (degree)
           {
             case 0:
-              return f(internal::DGKernels<dim, Physics, 0>{*this});
+              return f(internal::DGKernels<dim, Physics, 0, width>{*this});
             case 1:
-              return f(internal::DGKernels<dim, Physics, 1>{*this});
+              return f(internal::DGKernels<dim, Physics, 1, width>{*this});
             case 2:
-              return f(internal::DGKernels<dim, Physics, 2>{*this});
+              return f(internal::DGKernels<dim, Physics, 2, width>{*this});
             case 3:
-              return f(internal::DGKernels<dim, Physics, 3>{*this});
+              return f(internal::DGKernels<dim, Physics, 3, width>{*this});
             default:
               // reinit() admits no other degree
-              return f(internal::DGKernels<dim, Physics, 4>{*this});
+              return f(internal::DGKernels<dim, Physics, 4, width>{*this});
           }
       }
   }
 
-  template <int dim, typename Physics, int fe_degree>
+  template <int dim, typename Physics, int fe_degree, int width>
   void
-  internal::DGKernels<dim, Physics, fe_degree>::apply(const VectorType &src,
+  internal::DGKernels<dim, Physics, fe_degree, width>::apply(const VectorType &src,
                                                       VectorType       &dst) const
   {
     op.data.loop(&DGKernels::cell,
@@ -214,21 +214,21 @@ namespace granular_dg::dg
                  dst,
                  src,
                  true,
-                 MatrixFree<dim, double>::DataAccessOnFaces::values,
-                 MatrixFree<dim, double>::DataAccessOnFaces::values);
+                 MatrixFree<dim, double, VectorizedArray<double, width>>::DataAccessOnFaces::values,
+                 MatrixFree<dim, double, VectorizedArray<double, width>>::DataAccessOnFaces::values);
   }
 
-  template <int dim, typename Physics, int fe_degree>
+  template <int dim, typename Physics, int fe_degree, int width>
   void
-  internal::DGKernels<dim, Physics, fe_degree>::cell(
-    const MatrixFree<dim, double> &,
+  internal::DGKernels<dim, Physics, fe_degree, width>::cell(
+    const MatrixFree<dim, double, VectorizedArray<double, width>> &,
     VectorType                                  &dst,
     const VectorType                            &src,
     const std::pair<unsigned int, unsigned int> &cell_range) const
   {
     constexpr unsigned int n_components = Physics::n_components;
-    using VA                            = VectorizedArray<double>;
-    FEEvaluation<dim, fe_degree, n_q_points_1d<fe_degree>, n_components, double> phi(op.data);
+    using VA                            = VectorizedArray<double, width>;
+    FEEvaluation<dim, fe_degree, n_q_points_1d<fe_degree>, n_components, double, VA> phi(op.data);
     for (unsigned int cell = cell_range.first; cell < cell_range.second; ++cell)
       {
         phi.reinit(cell);
@@ -251,18 +251,18 @@ namespace granular_dg::dg
       }
   }
 
-  template <int dim, typename Physics, int fe_degree>
+  template <int dim, typename Physics, int fe_degree, int width>
   void
-  internal::DGKernels<dim, Physics, fe_degree>::face(
-    const MatrixFree<dim, double> &,
+  internal::DGKernels<dim, Physics, fe_degree, width>::face(
+    const MatrixFree<dim, double, VectorizedArray<double, width>> &,
     VectorType                                  &dst,
     const VectorType                            &src,
     const std::pair<unsigned int, unsigned int> &face_range) const
   {
     constexpr unsigned int n_components = Physics::n_components;
-    using VA                            = VectorizedArray<double>;
+    using VA                            = VectorizedArray<double, width>;
     using FaceEval =
-      FEFaceEvaluation<dim, fe_degree, n_q_points_1d<fe_degree>, n_components, double>;
+      FEFaceEvaluation<dim, fe_degree, n_q_points_1d<fe_degree>, n_components, double, VA>;
     FaceEval phi_m(op.data, true);
     FaceEval phi_p(op.data, false);
     for (unsigned int face = face_range.first; face < face_range.second; ++face)
@@ -288,17 +288,17 @@ namespace granular_dg::dg
       }
   }
 
-  template <int dim, typename Physics, int fe_degree>
+  template <int dim, typename Physics, int fe_degree, int width>
   void
-  internal::DGKernels<dim, Physics, fe_degree>::boundary_face(
-    const MatrixFree<dim, double> &,
+  internal::DGKernels<dim, Physics, fe_degree, width>::boundary_face(
+    const MatrixFree<dim, double, VectorizedArray<double, width>> &,
     VectorType                                  &dst,
     const VectorType                            &src,
     const std::pair<unsigned int, unsigned int> &face_range) const
   {
     constexpr unsigned int n_components = Physics::n_components;
-    using VA                            = VectorizedArray<double>;
-    FEFaceEvaluation<dim, fe_degree, n_q_points_1d<fe_degree>, n_components, double> phi(op.data,
+    using VA                            = VectorizedArray<double, width>;
+    FEFaceEvaluation<dim, fe_degree, n_q_points_1d<fe_degree>, n_components, double, VA> phi(op.data,
                                                                                         true);
     for (unsigned int face = face_range.first; face < face_range.second; ++face)
       {
@@ -336,15 +336,15 @@ namespace granular_dg::dg
       }
   }
 
-  template <int dim, typename Physics, int fe_degree>
+  template <int dim, typename Physics, int fe_degree, int width>
   double
-  internal::DGKernels<dim, Physics, fe_degree>::max_speed_over_h(const VectorType &solution,
+  internal::DGKernels<dim, Physics, fe_degree, width>::max_speed_over_h(const VectorType &solution,
                                                                  const double      min_speed) const
   {
     constexpr unsigned int n_components = Physics::n_components;
-    using VA                            = VectorizedArray<double>;
+    using VA                            = VectorizedArray<double, width>;
     double result = 0;
-    FEEvaluation<dim, fe_degree, n_q_points_1d<fe_degree>, n_components, double> phi(op.data);
+    FEEvaluation<dim, fe_degree, n_q_points_1d<fe_degree>, n_components, double, VA> phi(op.data);
     for (unsigned int cell = 0; cell < op.data.n_cell_batches(); ++cell)
       {
         phi.reinit(cell);
@@ -373,15 +373,15 @@ namespace granular_dg::dg
     return result;
   }
 
-  template <int dim, typename Physics, int fe_degree>
+  template <int dim, typename Physics, int fe_degree, int width>
   AdmissibilityReport
-  internal::DGKernels<dim, Physics, fe_degree>::check_admissibility(
+  internal::DGKernels<dim, Physics, fe_degree, width>::check_admissibility(
     const VectorType &solution) const
   {
     constexpr unsigned int n_components = Physics::n_components;
-    using VA                            = VectorizedArray<double>;
+    using VA                            = VectorizedArray<double, width>;
     AdmissibilityReport report;
-    FEEvaluation<dim, fe_degree, n_q_points_1d<fe_degree>, n_components, double> phi(op.data);
+    FEEvaluation<dim, fe_degree, n_q_points_1d<fe_degree>, n_components, double, VA> phi(op.data);
     for (unsigned int cell = 0; cell < op.data.n_cell_batches(); ++cell)
       {
         phi.reinit(cell);
@@ -412,9 +412,9 @@ namespace granular_dg::dg
     return report;
   }
 
-  template <int dim, typename Physics>
+  template <int dim, typename Physics, int width>
   void
-  DGOperator<dim, Physics>::apply(const double      t,
+  DGOperator<dim, Physics, width>::apply(const double      t,
                                   const VectorType &src,
                                   VectorType       &dst) const
   {
@@ -423,9 +423,9 @@ namespace granular_dg::dg
     dst.scale(inverse_mass_diagonal);
   }
 
-  template <int dim, typename Physics>
+  template <int dim, typename Physics, int width>
   double
-  DGOperator<dim, Physics>::max_speed_over_h(const VectorType &solution,
+  DGOperator<dim, Physics, width>::max_speed_over_h(const VectorType &solution,
                                              const double      min_speed) const
   {
     const double result =
@@ -433,9 +433,9 @@ namespace granular_dg::dg
     return Utilities::MPI::max(result, solution.get_mpi_communicator());
   }
 
-  template <int dim, typename Physics>
+  template <int dim, typename Physics, int width>
   AdmissibilityReport
-  DGOperator<dim, Physics>::check_admissibility(const VectorType &solution) const
+  DGOperator<dim, Physics, width>::check_admissibility(const VectorType &solution) const
   {
     AdmissibilityReport report =
       dispatch([&](const auto &kernels) { return kernels.check_admissibility(solution); });

@@ -29,6 +29,9 @@
     const granular_dg::RunParameters &,                                           \
     const granular_dg::dg::DiscretizationParameters &, bool, double,              \
     granular_dg::dg::VectorType *);                                               \
+  template void granular_dg::dg::require_scheme_fits<DIM, PHYSICS>(               \
+    const granular_dg::dg::DiscretizationParameters &,                            \
+    const granular_dg::dg::SceneData<DIM, PHYSICS> &);                            \
   template void granular_dg::dg::run_convergence_study<DIM, PHYSICS>(             \
     const std::function<granular_dg::dg::SceneData<DIM, PHYSICS>(unsigned int)> &, \
     const granular_dg::RunParameters &,                                           \

@@ -26,6 +26,7 @@ namespace granular_dg::dg
     std::string  flux   = "local_lax_friedrichs";
     Engine       engine = Engine::automatic;
     double       cfl    = 0.2;
+    TimeScheme   scheme = TimeScheme::ssp_rk3;
     bool         check_stability_limit = true;
     LimiterType  limiter      = LimiterType::none;
     std::string  limiter_name = "none";
@@ -55,12 +56,19 @@ namespace granular_dg::dg
   snapshot_bytes(double n_cells, unsigned int degree, int dim, unsigned int n_fields,
                  bool vtu);
 
-  /// The linear stability limit of the CFL number of SSP-RK3 with upwind DG
-  /// of degree p (1D Fourier analysis): 1.2563, 0.4095, 0.2097, 0.13, 0.0896.
-  double
-  ssprk3_cfl_limit(unsigned int degree);
+  /// The name of a scheme in Time stepping/scheme.
+  std::string
+  time_scheme_name(TimeScheme scheme);
 
-  /// An InputError naming parameter unless cfl <= ssprk3_cfl_limit(degree).
+  /// The linear stability limit of the CFL number of a Runge-Kutta scheme
+  /// with upwind DG of degree p (1D Fourier analysis, rounded down;
+  /// tests/unit/rk_stability_limits computes them), e.g. SSP-RK3: 1.2563,
+  /// 0.4095, 0.2097, 0.13, 0.0896.
+  double
+  cfl_limit(TimeScheme scheme, unsigned int degree);
+
+  /// An InputError naming parameter unless cfl <= cfl_limit(scheme, degree).
   void
-  require_stable_cfl(double cfl, unsigned int degree, const std::string &parameter);
+  require_stable_cfl(double cfl, TimeScheme scheme, unsigned int degree,
+                     const std::string &parameter);
 } // namespace granular_dg::dg

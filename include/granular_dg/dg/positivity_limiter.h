@@ -41,6 +41,12 @@ namespace granular_dg::dg
       points.reinit(cells);
     }
 
+    std::string
+    stage_operation() const override
+    {
+      return "the positivity limiter (" + parameter + ")";
+    }
+
     void
     post_limiter(VectorType &u, double) override
     {

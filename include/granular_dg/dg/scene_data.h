@@ -64,6 +64,16 @@ namespace granular_dg::dg
     post_limiter(VectorType &, double /*stage_time*/)
     {}
 
+    /// The name of what post_stage() or post_limiter() do to a stage value
+    /// ("" if nothing): such operations need SSP-RK3's stages (convex
+    /// combinations of Euler steps), so Solver refuses the low-storage
+    /// schemes with them, naming this.
+    virtual std::string
+    stage_operation() const
+    {
+      return "";
+    }
+
     /// After the operator's own check of every stage (finite, hyperbolic):
     /// what else the scene's model requires of the state. A report that is
     /// not ok stops the run like the operator's.
@@ -153,6 +163,14 @@ namespace granular_dg::dg
     {
       for (auto &h : list)
         h->post_limiter(u, t);
+    }
+    std::string
+    stage_operation() const override
+    {
+      for (const auto &h : list)
+        if (const auto name = h->stage_operation(); !name.empty())
+          return name;
+      return "";
     }
     AdmissibilityReport
     check_admissibility(const VectorType &u) const override

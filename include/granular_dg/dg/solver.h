@@ -109,11 +109,19 @@ namespace granular_dg::dg
     ModalLimiter<dim, Physics>       limiter;
     CellQuadrature<dim>              quadrature;
     SSPRK3<>                         integrator;
+    std::unique_ptr<LowStorageRK>    low_storage; ///< when method.scheme is one
     HookList<dim>                    hooks;
     VectorType                       solution, last_good, benchmark_start;
     unsigned int                     troubled = 0;
     StepPhases                      *phases   = nullptr;
   };
+
+  /// An InputError naming Time stepping/scheme when the scene has a stage
+  /// operation (SceneHooks::stage_operation) the scheme cannot carry: only
+  /// SSP-RK3 can. Scenes call it before they write anything; Solver again.
+  template <int dim, typename Physics>
+  void
+  require_scheme_fits(const DiscretizationParameters &method, const SceneData<dim, Physics> &scene);
 
   /// One run of a scene: a Solver driven by the TimeLoop. final_state, if
   /// given, gets the state at the end.

@@ -83,6 +83,13 @@ namespace granular_dg::dg
         StepPhases::Scope scope(phases, StepPhases::operator_apply);
         op.apply_stage(t, src, dst, s);
       }
+
+      void
+      apply(const double t, const VectorType &src, VectorType &dst) const
+      {
+        StepPhases::Scope scope(phases, StepPhases::operator_apply);
+        op.apply(t, src, dst);
+      }
     };
 
     inline std::string
@@ -115,6 +122,23 @@ namespace granular_dg::dg
     quadrature.reinit(limiter.layout());
     hooks.set_all_resuming(run.resume && write_files);
     hooks.initialize(dof_handler, mapping, limiter.layout());
+    if (method.scheme != TimeScheme::ssp_rk3)
+      {
+        require_scheme_fits(method, scene);
+        low_storage = std::make_unique<LowStorageRK>(method.scheme);
+      }
+  }
+
+  template <int dim, typename Physics>
+  void
+  require_scheme_fits(const DiscretizationParameters &method, const SceneData<dim, Physics> &scene)
+  {
+    if (method.scheme == TimeScheme::ssp_rk3)
+      return;
+    const std::string operation = HookList<dim>(scene.hooks).stage_operation();
+    require(operation.empty(), "Time stepping/scheme", time_scheme_name(method.scheme),
+            "ssp_rk3 only: this run has " + operation +
+              ", which needs a scheme of convex combinations of Euler steps");
   }
 
   template <int dim, typename Physics>
@@ -132,7 +156,7 @@ namespace granular_dg::dg
     i.n_cells   = scene.triangulation->n_global_active_cells();
     i.n_dofs    = dof_handler.n_dofs();
     i.h_min     = GridTools::minimal_cell_diameter(*scene.triangulation);
-    i.n_stages  = SSPRK3<>::n_stages;
+    i.n_stages  = low_storage ? low_storage->n_stages() : SSPRK3<>::n_stages;
     i.time_name = scene.time_name;
     i.snapshot_files = dim == 1 ? "solution.pvd, profile-NNNN.csv" : "solution.pvd";
     i.description    = std::to_string(i.n_cells) + " cells, " + std::to_string(i.n_dofs) +
@@ -140,7 +164,7 @@ namespace granular_dg::dg
     i.method.add("engine", op->engine_name());
     i.method.add("numerical_flux", method.flux);
     i.method.add("limiter", method.limiter_name);
-    i.method.add("scheme", "ssp_rk3");
+    i.method.add("scheme", time_scheme_name(method.scheme));
     i.bytes_per_snapshot =
       snapshot_bytes(i.n_cells, method.degree, dim,
                      Physics::n_components + Physics::derived_names().size(), write_vtu_files);
@@ -241,9 +265,11 @@ namespace granular_dg::dg
   Solver<dim, Physics>::advance(const double t, const double dt)
   {
     const internal::TimedOperator<dim> timed{*op, phases};
-    integrator.step(timed, solution, t, dt, [&](VectorType &u, const double s, const double w) {
-      post_stage(u, s, w);
-    });
+    const auto stage = [&](VectorType &u, const double s, const double w) { post_stage(u, s, w); };
+    if (low_storage)
+      low_storage->step(timed, solution, t, dt, stage);
+    else
+      integrator.step(timed, solution, t, dt, stage);
   }
 
   template <int dim, typename Physics>

@@ -1,9 +1,11 @@
 #pragma once
 
+#include <deal.II/base/time_stepping.h>
 #include <deal.II/lac/la_parallel_vector.h>
 
 #include <functional>
 #include <utility>
+#include <vector>
 
 namespace granular_dg::dg
 {
@@ -118,6 +120,90 @@ namespace granular_dg::dg
   private:
     bool   initialized = false;
     Vector u1;
+  };
+
+  /// The explicit Runge-Kutta schemes of Time stepping/scheme.
+  enum class TimeScheme
+  {
+    ssp_rk3,  ///< SSPRK3 below (Shu-Osher), the default
+    lsrk_3_3, ///< deal.II's low-storage RK, 3 stages, order 3
+    lsrk_5_4, ///< 5 stages, order 4 (Kennedy, Carpenter, Lewis 2000; step-67)
+    lsrk_7_4, ///< 7 stages, order 4 (Tselios, Simos 2007)
+    lsrk_9_5  ///< 9 stages, order 5 (Kennedy, Carpenter, Lewis 2000)
+  };
+
+  /**
+   * deal.II's low-storage explicit Runge-Kutta schemes
+   * (TimeStepping::LowStorageRungeKutta, their coefficients a, b, c) in the
+   * two-register form of step-67: with r = u at the first stage,
+   *   k = L(t + c_i dt, r);  r = u + a_i dt k  (i < s);  u = u + b_i dt k,
+   * both updates in one pass over the vector. The stage values r (and u at
+   * the end) go to the post-stage hook; the scheme is not a convex
+   * combination of Euler steps, so the hook may check a stage but must not
+   * change it: Solver refuses limiters and stage operations with these
+   * schemes (doc/program.md, "Time stepping").
+   */
+  class LowStorageRK
+  {
+  public:
+    using PostStageHook = std::function<void(VectorType &u, double stage_time, double weight)>;
+
+    explicit LowStorageRK(const TimeScheme scheme)
+    {
+      using namespace dealii::TimeStepping;
+      const runge_kutta_method method =
+        scheme == TimeScheme::lsrk_3_3 ? LOW_STORAGE_RK_STAGE3_ORDER3 :
+        scheme == TimeScheme::lsrk_5_4 ? LOW_STORAGE_RK_STAGE5_ORDER4 :
+        scheme == TimeScheme::lsrk_7_4 ? LOW_STORAGE_RK_STAGE7_ORDER4 :
+                                         LOW_STORAGE_RK_STAGE9_ORDER5;
+      Assert(scheme != TimeScheme::ssp_rk3, dealii::ExcInternalError());
+      LowStorageRungeKutta<VectorType>(method).get_coefficients(a, b, c);
+    }
+
+    unsigned int
+    n_stages() const
+    {
+      return b.size();
+    }
+
+    /// One step: op.apply(t, src, dst) evaluates L.
+    template <typename Operator>
+    void
+    step(const Operator &op, VectorType &u, const double t, const double dt,
+         const PostStageHook &post_stage)
+    {
+      if (r.size() != u.size())
+        {
+          r.reinit(u);
+          k.reinit(u);
+        }
+      for (unsigned int i = 0; i < n_stages(); ++i)
+        {
+          op.apply(t + c[i] * dt, i == 0 ? u : r, k);
+          const bool   last = i + 1 == n_stages();
+          const double ai = last ? 0. : a[i] * dt, bi = b[i] * dt;
+          double      *pu = u.begin(), *pr = r.begin();
+          const double *pk = k.begin();
+          const unsigned int n = u.locally_owned_size();
+          if (!last)
+            for (unsigned int j = 0; j < n; ++j)
+              {
+                pr[j] = pu[j] + ai * pk[j];
+                pu[j] += bi * pk[j];
+              }
+          else
+            for (unsigned int j = 0; j < n; ++j)
+              pu[j] += bi * pk[j];
+          if (last)
+            post_stage(u, t + dt, bi);
+          else
+            post_stage(r, t + c[i + 1] * dt, ai);
+        }
+    }
+
+  private:
+    std::vector<double> a, b, c;
+    VectorType          r, k;
   };
 
   /// The forward Euler step u = u + dt L(t, u) (one stage, in place), with

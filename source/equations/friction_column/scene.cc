@@ -71,12 +71,16 @@ namespace granular_dg::column
                 "true: a convergence study needs the exact solution");
       require_reasonable_snapshot_count(
         common, dg::snapshot_bytes(p.cells, method.degree, 1, 7, common.write_vtu));
+      // built (and so validated) before anything is written
+      const auto scene =
+        make_scene(p, common, common.convergence ? common.convergence_cells.front() : p.cells);
+      dg::require_scheme_fits(method, scene);
       begin_output(common);
       if (common.convergence)
         dg::run_convergence_study<1, System>(
           [&](const unsigned int cells) { return make_scene(p, common, cells); }, common, method);
       else
-        dg::run_simulation(make_scene(p, common, p.cells), common, method);
+        dg::run_simulation(scene, common, method);
     }
 
     const RegisterScene registration(dg::scene_entry<ColumnParameters>(

@@ -381,6 +381,7 @@ namespace granular_dg::elasticity
       const auto scene = make_scene<dim>(
         p, common.convergence ? common.convergence_cells.front() : 0,
         p.periodic_from > 0 ? common.directory + "/before-periodic" : common.scene_directory());
+      dg::require_scheme_fits(method, scene);
       if (common.convergence)
         require(static_cast<bool>(scene.exact), "Exact solution/available", "false",
                 "true: a convergence study needs the exact solution");

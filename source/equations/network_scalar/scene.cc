@@ -246,6 +246,10 @@ namespace granular_dg::network
       if (Utilities::MPI::n_mpi_processes(MPI_COMM_WORLD) > 1)
         throw InputError("the network scene runs on one MPI rank (its edges are small serial "
                          "1D meshes): run it without mpirun");
+      require(method.scheme == dg::TimeScheme::ssp_rk3, "Time stepping/scheme",
+              dg::time_scheme_name(method.scheme),
+              "ssp_rk3 (the network's vertex coupling runs with Euler or SSP-RK3 stages; "
+              "Time stepping/integrator chooses between them)");
       Case &c = *this;
       c.disc.degree         = method.degree;
       c.disc.flux           = numerical_flux_names.parse("Discretization/numerical flux",

@@ -210,6 +210,12 @@ namespace granular_dg::column
         projection->keep_stuck_at_rest(U);
     }
 
+    std::string
+    stage_operation() const override
+    {
+      return implicit() ? "the friction projection of every stage" : "";
+    }
+
     void
     save(ByteWriter &w) override
     {
