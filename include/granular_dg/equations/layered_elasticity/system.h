@@ -31,6 +31,7 @@
 #include <deal.II/base/vectorization.h>
 
 #include <granular_dg/base/parameters.h>
+#include <granular_dg/base/vectorized_math.h>
 #include <granular_dg/dg/boundary.h>
 #include <granular_dg/dg/numerical_flux.h>
 
@@ -176,7 +177,7 @@ namespace granular_dg::elasticity
       if (law == StressLaw::quadratic)
         return K * eps + (a[nonlinearity] * K * K) * eps * eps;
       else
-        return std::exp(K * eps) - Number(1.);
+        return granular_dg::exp(K * eps) - Number(1.);
     }
 
     /// The strain of a given stress (the inverse law); NaN where the law
@@ -202,7 +203,7 @@ namespace granular_dg::elasticity
       if (law == StressLaw::quadratic)
         return K + (2. * a[nonlinearity] * K * K) * eps;
       else
-        return K * std::exp(K * eps);
+        return K * granular_dg::exp(K * eps);
     }
 
     /// sigma(eps) and sigma'(eps) together: the same values as stress() and
@@ -213,7 +214,7 @@ namespace granular_dg::elasticity
     {
       if (law == StressLaw::quadratic)
         return {stress(eps, a), stress_derivative(eps, a)};
-      const Number e = std::exp(a[modulus] * eps);
+      const Number e = granular_dg::exp(a[modulus] * eps);
       return {e - Number(1.), a[modulus] * e};
     }
 

@@ -1,0 +1,76 @@
+#pragma once
+
+/**
+ * @file Elementary functions on deal.II's VectorizedArray that stay in SIMD
+ * registers. deal.II's std::exp(VectorizedArray) calls std::exp lane by lane;
+ * in the 2D strip with the exponential stress law that was 40 % of the
+ * operator's time at 8 lanes (doc/performance.md, "SIMD build").
+ *
+ * exp() takes double (std::exp, unchanged) or VectorizedArray<double, W>:
+ * Cody-Waite reduction x = n ln 2 + r, |r| <= ln 2 / 2, the Taylor
+ * polynomial of degree 13 for e^r, and the scaling by 2^n in two factors (so that
+ * subnormal results and overflow to inf come out as std::exp's). Accuracy:
+ * within 2 ulp of std::exp for all finite x (tests/unit/vectorized_exp
+ * checks 10^6 arguments and the special values); NaN stays NaN, exp(-inf) = 0,
+ * exp(inf) = inf. Every lane is computed alone: the value does not depend on
+ * the lane or the width.
+ */
+
+#include <deal.II/base/vectorization.h>
+
+#include <cmath>
+#include <cstdint>
+#include <cstring>
+
+namespace granular_dg
+{
+  inline double
+  exp(const double x)
+  {
+    return std::exp(x);
+  }
+
+  template <std::size_t width>
+  dealii::VectorizedArray<double, width>
+  exp(const dealii::VectorizedArray<double, width> &x_in)
+  {
+    using VA = dealii::VectorizedArray<double, width>;
+    // beyond these e^x is inf or 0 (std::exp's thresholds, with margin)
+    const VA x = std::min(std::max(x_in, VA(-746.)), VA(710.));
+    // n = round(x / ln 2) by the 1.5 * 2^52 trick (|x / ln 2| < 2^51)
+    const VA shifter(6755399441055744.);
+    const VA n = (x * VA(1.4426950408889634073599) + shifter) - shifter;
+    // r = x - n ln 2 in two parts (Cephes' C1 + C2 = ln 2)
+    const VA r  = (x - n * VA(6.93145751953125e-1)) - n * VA(1.42860682030941723212e-6);
+    // e^r by its Taylor polynomial of degree 13 (remainder < 5e-18 relative
+    // for |r| <= ln 2 / 2), Horner
+    static constexpr double c[] = {1. / 6227020800., 1. / 479001600., 1. / 39916800.,
+                                   1. / 3628800.,    1. / 362880.,    1. / 40320.,
+                                   1. / 5040.,       1. / 720.,       1. / 120.,
+                                   1. / 24.,         1. / 6.,         1. / 2.,
+                                   1.,               1.};
+    VA e = VA(c[0]);
+    for (unsigned int i = 1; i < 14; ++i)
+      e = e * r + VA(c[i]);
+    // times 2^n = 2^n1 2^n2, each factor a normal double
+    VA scale1, scale2;
+    for (unsigned int v = 0; v < width; ++v)
+      {
+        const std::int64_t k  = static_cast<std::int64_t>(n[v]);
+        const std::int64_t k1 = k / 2, k2 = k - k1;
+        const std::uint64_t b1 = static_cast<std::uint64_t>(k1 + 1023) << 52,
+                            b2 = static_cast<std::uint64_t>(k2 + 1023) << 52;
+        double f1, f2;
+        std::memcpy(&f1, &b1, sizeof(double));
+        std::memcpy(&f2, &b2, sizeof(double));
+        scale1[v] = f1;
+        scale2[v] = f2;
+      }
+    e = (e * scale1) * scale2;
+    // NaN in, NaN out (min/max above replaced it)
+    for (unsigned int v = 0; v < width; ++v)
+      if (x_in[v] != x_in[v])
+        e[v] = x_in[v];
+    return e;
+  }
+} // namespace granular_dg
