@@ -250,6 +250,28 @@ namespace granular_dg
     return times;
   }
 
+  double
+  available_memory_per_rank()
+  {
+    std::ifstream meminfo("/proc/meminfo");
+    std::string   key, unit;
+    double        kb = 0.;
+    while (meminfo >> key >> kb >> unit)
+      if (key == "MemAvailable:")
+        break;
+    if (key != "MemAvailable:")
+      return 0.;
+    int ranks_here = 1;
+    if (Utilities::MPI::job_supports_mpi())
+      {
+        MPI_Comm node;
+        MPI_Comm_split_type(MPI_COMM_WORLD, MPI_COMM_TYPE_SHARED, 0, MPI_INFO_NULL, &node);
+        MPI_Comm_size(node, &ranks_here);
+        MPI_Comm_free(&node);
+      }
+    return 1024. * kb / ranks_here;
+  }
+
   void
   require_reasonable_snapshot_count(const RunParameters &p, const double bytes_per_snapshot,
                                     const unsigned long max_snapshots)

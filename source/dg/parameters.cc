@@ -39,6 +39,24 @@ namespace granular_dg::dg
            (dim == 1 ? points * 16. * (n_fields + 1) : 0.);
   }
 
+  void
+  require_memory_fits(const double n_cells, const unsigned int degree, const int dim,
+                      const unsigned int n_components, const std::string &parameter,
+                      const std::string &value, const std::string &change)
+  {
+    const double n_dofs    = n_cells * std::pow(degree + 1., dim) * n_components;
+    const double ranks     = Utilities::MPI::job_supports_mpi() ?
+                               Utilities::MPI::n_mpi_processes(MPI_COMM_WORLD) :
+                               1.;
+    const double needed    = n_dofs * bytes_per_dof / ranks;
+    const double available = available_memory_per_rank();
+    require(available <= 0. || needed <= available, parameter, value,
+            "the run needs about " + format_bytes(needed) + " per MPI rank (" +
+              format_number(n_dofs) + " DoFs at ~" + format_number(bytes_per_dof) +
+              " bytes each), more than the " + format_bytes(available) +
+              " available (MemAvailable): " + change);
+  }
+
   std::string
   time_scheme_name(const TimeScheme scheme)
   {

@@ -75,3 +75,10 @@ granular_dg_test(hardening/resume_normalised EXE ${TEST_PYTHON}
 granular_dg_test(hardening/no_sliver_steps PRM ../prm/column_vertical.prm
   ARGS --set "Output/write vtu=false" --set "Diagnostics/write sgn map=false"
   COMPARE summary.json:n_time_steps)
+
+# 12. A mesh that cannot fit is refused before it is allocated (it ended in
+# std::bad_alloc, or in swapping): exit 2, one line with the estimate, the
+# memory available and what to change. The available memory (MemAvailable)
+# varies between runs: -r 1 on the numbers, the words compared as they are.
+granular_dg_test(hardening/memory_does_not_fit PRM hardening/memory_does_not_fit.prm EXIT 2
+  KEEP_OUTPUT NUMDIFF -a 0 -r 1)

@@ -74,6 +74,11 @@ namespace granular_dg
   require_reasonable_snapshot_count(const RunParameters &params, double bytes_per_snapshot,
                                     unsigned long max_snapshots = 100000);
 
+  /// The memory this MPI rank may use: MemAvailable of /proc/meminfo shared
+  /// by the ranks on this machine (0 if it cannot be read).
+  double
+  available_memory_per_rank();
+
   /// Create (or, with Output/overwrite, clear) the output directory and write
   /// parameters.prm, the parameters actually used. Call after all input has
   /// been validated, so that bad input leaves nothing behind. With

@@ -56,6 +56,19 @@ namespace granular_dg::dg
   snapshot_bytes(double n_cells, unsigned int degree, int dim, unsigned int n_fields,
                  bool vtu);
 
+  /// Bytes per DoF of a DG run, measured on the 2D strip at 10.8 M DoFs
+  /// (P2, all vectors, MatrixFree data, DoFHandler and mesh; doc/performance.md).
+  inline constexpr double bytes_per_dof = 134.;
+
+  /// An InputError naming parameter (= value) when a mesh of n_cells cells
+  /// of degree p with n_components unknowns needs more memory than this MPI
+  /// rank has (available_memory_per_rank()): refused before anything is
+  /// allocated; change says what to change.
+  void
+  require_memory_fits(double n_cells, unsigned int degree, int dim, unsigned int n_components,
+                      const std::string &parameter, const std::string &value,
+                      const std::string &change);
+
   /// The name of a scheme in Time stepping/scheme.
   std::string
   time_scheme_name(TimeScheme scheme);

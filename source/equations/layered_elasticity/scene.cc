@@ -377,6 +377,14 @@ namespace granular_dg::elasticity
     run(const LayeredParameters &p, const RunParameters &common,
         const dg::DiscretizationParameters &method)
     {
+      if (!common.convergence)
+        dg::require_memory_fits(double(p.cells[0]) * (dim == 2 ? p.cells[1] : 1), method.degree,
+                                dim, System<dim>::n_components, "Mesh/cells x",
+                                std::to_string(p.cells[0]) +
+                                  (dim == 2 ? " (cells y = " + std::to_string(p.cells[1]) + ")" :
+                                              std::string()),
+                                "use fewer cells or a lower degree, or run on more machines "
+                                "(MPI ranks)");
       // build (and so validate) everything before anything is written
       const auto scene = make_scene<dim>(
         p, common.convergence ? common.convergence_cells.front() : 0,
