@@ -127,6 +127,15 @@ namespace granular_dg::dg
                       "low-storage schemes lsrk_S_O (S stages, order O), more stable per "
                       "stage, for unlimited runs. Allowed: " +
                         time_scheme_names.selection() + ".");
+    prm.declare_entry("skip tolerance", "0", Patterns::Double(0, 1e-6),
+                      "Skip the cells that cannot change: after a step, a cell whose values "
+                      "all moved by at most this times the largest |value| of the state is "
+                      "quiet, and the next step (of the same size) computes only the cells "
+                      "within reach of a cell that was not; when all are quiet, the run is "
+                      "at rest and finishes at once, writing the remaining snapshots. "
+                      "Differences to the full computation stay at this level "
+                      "(doc/engine.md). For scenes whose operator does not depend on time, "
+                      "1D, line engine, ssp_rk3. 0: compute every cell. Allowed: [0, 1e-6].");
     prm.leave_subsection();
 
     const std::string limiters = limiter_selection(physics_variables);
@@ -172,6 +181,7 @@ namespace granular_dg::dg
     cfl                   = prm.get_double("CFL number");
     check_stability_limit = prm.get_bool("check stability limit");
     scheme = time_scheme_names.parse("Time stepping/scheme", prm.get("scheme"));
+    skip_tolerance = prm.get_double("skip tolerance");
     prm.leave_subsection();
     // (a stability study, check stability limit = false, may go beyond 1)
     // (SSP-RK3: at most 1, also for the network's forward Euler at degree 0)

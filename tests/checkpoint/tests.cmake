@@ -27,6 +27,17 @@ checkpoint_test(column_stop_resume column/m15_t20.prm stop:1000
   OPTIONS --every 300 ${column_options})
 checkpoint_test(column_kill column/m15_t20.prm kill OPTIONS --every 100 ${column_options})
 
+# A column run that skips quiet cells (tests/column/m15_rest.prm, skip
+# tolerance 1e-15, at rest from t = 29 at step 7120): which cells a step leaves
+# out (dg::ActiveCells), the limiter's flags and the friction states of the
+# cells left out continue across the restart, so the resumed run is the
+# uninterrupted one bit for bit. Stopped after skipping has begun (step 3000),
+# and killed at random.
+set(skip_options --set "Time stepping/skip tolerance=1e-15")
+checkpoint_test(column_skip_stop_resume column/m15_rest.prm stop:3000
+  OPTIONS --every 1000 ${skip_options})
+checkpoint_test(column_skip_kill column/m15_rest.prm kill OPTIONS --every 500 ${skip_options})
+
 # The layered strip with the (sigma, u) limiter: interrupted by SIGINT
 # (exit 130, a checkpoint, status 'interrupted'), then resumed.
 set(layered_options --set "Mesh/x max=60" --set "Mesh/cells x=240"

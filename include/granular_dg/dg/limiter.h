@@ -4,6 +4,7 @@
 #include <deal.II/dofs/dof_handler.h>
 #include <deal.II/lac/la_parallel_vector.h>
 
+#include <granular_dg/dg/active_cells.h>
 #include <granular_dg/dg/boundary.h>
 #include <granular_dg/dg/modal_layout.h>
 
@@ -93,9 +94,10 @@ namespace granular_dg::dg
     reinit(const DoFHandler<dim> &dof_handler);
 
     /// Limit in place at time t (for boundary data); returns the number of
-    /// troubled (modified) cells on this rank.
+    /// troubled (modified) cells on this rank. With active cells, only the
+    /// cells of their current step (the others keep their flags).
     unsigned int
-    apply(VectorType &solution, double t = 0.) const;
+    apply(VectorType &solution, double t = 0., const ActiveCells *active = nullptr) const;
 
     /// Troubled flags of the last apply(), one per locally owned active cell
     /// in the order of dof_handler.active_cell_iterators().
@@ -103,6 +105,13 @@ namespace granular_dg::dg
     troubled_cells() const
     {
       return troubled;
+    }
+    /// Set the flags (from a checkpoint: with skipped cells, the flags of
+    /// cells a step leaves out are kept from when they were computed).
+    void
+    set_troubled_cells(const std::vector<unsigned char> &flags) const
+    {
+      troubled = flags;
     }
 
     LimiterType
@@ -150,7 +159,7 @@ namespace granular_dg::dg
     /// apply() with n1 = degree + 1 modes per direction
     template <unsigned int n1>
     unsigned int
-    apply_impl(VectorType &u, double t) const;
+    apply_impl(VectorType &u, double t, const ActiveCells *active) const;
 
     /// Limit the modes x of owned cell i; true if it was troubled.
     template <unsigned int n1>

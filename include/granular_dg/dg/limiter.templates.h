@@ -140,7 +140,8 @@ namespace granular_dg::dg
 
   template <int dim, typename Physics>
   unsigned int
-  ModalLimiter<dim, Physics>::apply(VectorType &u, const double t) const
+  ModalLimiter<dim, Physics>::apply(VectorType &u, const double t,
+                                    const ActiveCells *active) const
   {
     const unsigned int n_modes_1d = cells.degree() + 1;
     if (type == LimiterType::none || n_modes_1d == 1)
@@ -149,7 +150,7 @@ namespace granular_dg::dg
       if constexpr (decltype(n1)::value == 1)
         return 0; // (returned above: a constant has no slope to limit)
       else
-        return apply_impl<decltype(n1)::value>(u, t);
+        return apply_impl<decltype(n1)::value>(u, t, active);
     });
   }
 
@@ -333,7 +334,8 @@ namespace granular_dg::dg
   template <int dim, typename Physics>
   template <unsigned int n1>
   unsigned int
-  ModalLimiter<dim, Physics>::apply_impl(VectorType &u, const double t) const
+  ModalLimiter<dim, Physics>::apply_impl(VectorType &u, const double t,
+                                         const ActiveCells *active) const
   {
     // averages (also of ghost cells) are read from the ghosted vector, the
     // modes of owned cells read and written in u
@@ -348,13 +350,15 @@ namespace granular_dg::dg
           for (unsigned int i = 0; i < cells.n_cells(); ++i)
             limiting_values[i] = physics.limiting_variables(average(i), coefficients[i]);
         }
-    unsigned int n_troubled = 0;
-    double      *u_data     = u.begin();
-    for (unsigned int i = 0; i < cells.n_owned(); ++i)
-      {
+    double *u_data = u.begin();
+    const auto limit_range = [&](const unsigned int first, const unsigned int end) {
+      for (unsigned int i = first; i < end; ++i)
         troubled[i] = limit_cell<n1>(i, u_data + base[i]);
-        n_troubled += troubled[i];
-      }
+    };
+    for_active_ranges(active, cells.n_owned(), limit_range);
+    unsigned int n_troubled = 0;
+    for (const unsigned char flag : troubled)
+      n_troubled += flag;
     return n_troubled;
   }
 } // namespace granular_dg::dg

@@ -187,6 +187,11 @@ namespace granular_dg::dg
     {
       const double *u   = src.begin();
       double       *out = dst.begin();
+      // cells this step leaves out keep their state in every stage
+      if (active && out != u)
+        for (const auto &[first, end] : active->newly_left_out_ranges())
+          std::copy(u + first * n_components * n_modes, u + end * n_components * n_modes,
+                    out + first * n_components * n_modes);
       dispatch([&](auto nm) {
         constexpr unsigned int n = decltype(nm)::value;
         // the branch on s.old outside the cell loop
@@ -215,7 +220,7 @@ namespace granular_dg::dg
       const unsigned int first_bad =
         dispatch([&](auto nm) { return first_inadmissible<decltype(nm)::value>(u.begin()); });
       for (unsigned int c = first_bad; c < n_cells; ++c)
-        for (unsigned int q = 0; q < n_q; ++q)
+        for (unsigned int q = 0; q < n_q && (!active || active->computes(c)); ++q)
           {
             const auto U = state_at(u, c, q);
             if (!admissible(phys, U, coefficients[c]))
@@ -228,6 +233,14 @@ namespace granular_dg::dg
               }
           }
       return report;
+    }
+
+    bool
+    restrict_to(const ActiveCells *cells) override
+    {
+      active = cells;
+      cell_speed.clear();
+      return true;
     }
 
     const Physics &
@@ -266,19 +279,36 @@ namespace granular_dg::dg
     {
       // the largest speed of a cell, divided once by h: the same maximum
       // (division by h > 0 is monotone)
-      double result = 0;
-      for (unsigned int c = 0; c < n_cells; ++c)
+      auto cell_value = [&](const unsigned int c) {
+        double cell_max = 0;
+        for (unsigned int q = 0; q < nm + 1; ++q)
+          cell_max = std::max(cell_max,
+                              std::max(phys.max_wave_speed(
+                                         state_at<nm>(src + c * n_components * nm, basis[q]),
+                                         coefficients[c]),
+                                       min_speed));
+        return cell_max / h[c];
+      };
+      if (!active)
         {
-          double cell_max = 0;
-          for (unsigned int q = 0; q < nm + 1; ++q)
-            cell_max = std::max(cell_max,
-                                std::max(phys.max_wave_speed(
-                                           state_at<nm>(src + c * n_components * nm, basis[q]),
-                                           coefficients[c]),
-                                         min_speed));
-          result = std::max(result, cell_max / h[c]);
+          double result = 0;
+          for (unsigned int c = 0; c < n_cells; ++c)
+            result = std::max(result, cell_value(c));
+          return result;
         }
-      return result;
+      // with active cells: refresh the cells the last step computed
+      if (cell_speed.size() != n_cells || min_speed != cell_speed_floor)
+        {
+          cell_speed.assign(n_cells, 0.);
+          cell_speed_floor = min_speed;
+          for (unsigned int c = 0; c < n_cells; ++c)
+            cell_speed[c] = cell_value(c);
+        }
+      else
+        for (const auto &[first, end] : active->ranges())
+          for (unsigned int c = first; c < end; ++c)
+            cell_speed[c] = cell_value(c);
+      return *std::max_element(cell_speed.begin(), cell_speed.end());
     }
 
     /// the first cell with an inadmissible point value (n_cells: none)
@@ -286,17 +316,20 @@ namespace granular_dg::dg
     unsigned int
     first_inadmissible(const double *src) const
     {
-      for (unsigned int c = 0; c < n_cells; ++c)
-        {
-          // all points of the cell, without a branch per point
-          bool ok = true;
-          for (unsigned int q = 0; q < nm + 1; ++q)
-            ok &= admissible(phys, state_at<nm>(src + c * n_components * nm, basis[q]),
-                             coefficients[c]);
-          if (!ok)
-            return c;
-        }
-      return n_cells;
+      unsigned int first_bad = n_cells;
+      for_active_ranges(active, n_cells, [&](const unsigned int first, const unsigned int end) {
+        for (unsigned int c = first; c < end && first_bad == n_cells; ++c)
+          {
+            // all points of the cell, without a branch per point
+            bool ok = true;
+            for (unsigned int q = 0; q < nm + 1; ++q)
+              ok &= admissible(phys, state_at<nm>(src + c * n_components * nm, basis[q]),
+                               coefficients[c]);
+            if (!ok)
+              first_bad = c;
+          }
+      });
+      return first_bad;
     }
 
     std::size_t
@@ -343,52 +376,68 @@ namespace granular_dg::dg
       return phys.numerical_flux(U_m, U_p, normal, a, a);
     }
 
-    /// out(i, r) for every vector index i of the cells and its value r of
-    /// M^{-1} R(t, src); a cell's entries after all reads of the cell and of
-    /// its left neighbour's entries (so that out may overwrite src in place)
+    /// out(i, r) for every vector index i of the cells (of the active
+    /// ones, if any) and its value r of M^{-1} R(t, src); a cell's entries
+    /// after all reads of the cell and of its left neighbour's entries (so
+    /// that out may overwrite src in place)
     template <unsigned int nm, typename Out>
     void
     apply_impl(const double t, const double *src, const Out &out) const
     {
+      // the left trace of cell 0, the periodic partner of the last cell,
+      // before any cell is overwritten
+      State<double> first_left, unused;
+      traces<nm>(src, 0, first_left, unused);
+      for_active_ranges(active, n_cells, [&](const unsigned int first, const unsigned int end) {
+        apply_range<nm>(t, src, out, first, end, first_left);
+      });
+    }
+
+    /// traces of cell c at its left (xi = 0) and right (xi = 1) ends
+    template <unsigned int nm>
+    void
+    traces(const double *src, const unsigned int c, State<double> &U0, State<double> &U1) const
+    {
+      const double *u = src + c * n_components * nm;
+      for (unsigned int i = 0; i < n_components; ++i)
+        {
+          double s0 = 0, s1 = 0;
+          for (unsigned int k = 0; k < nm; ++k)
+            {
+              const double x = u[i * nm + k];
+              s0 += x * at_0[k];
+              s1 += x * at_1[k];
+            }
+          U0[i] = s0;
+          U1[i] = s1;
+        }
+    }
+
+    /// apply_impl() on the cells [first, end)
+    template <unsigned int nm, typename Out>
+    void
+    apply_range(const double t, const double *src, const Out &out, const unsigned int first,
+                const unsigned int end, const State<double> &first_left) const
+    {
       constexpr unsigned int nc = n_components, nq = nm + 1, dpc = nc * nm;
       Tensor<1, 1>           right;
       right[0] = 1.;
-      // traces of a cell at its left (xi = 0) and right (xi = 1) ends
-      auto traces = [&](const unsigned int c, State<double> &U0, State<double> &U1) {
-        const double *u = src + c * dpc;
-        for (unsigned int i = 0; i < nc; ++i)
-          {
-            double s0 = 0, s1 = 0;
-            for (unsigned int k = 0; k < nm; ++k)
-              {
-                const double x = u[i * nm + k];
-                s0 += x * at_0[k];
-                s1 += x * at_1[k];
-              }
-            U0[i] = s0;
-            U1[i] = s1;
-          }
-      };
 
       // the flux through the left face of cell c (F*.n with n = +1, from
-      // cell c-1 into c), kept from one cell to the next; first_left: the
-      // left trace of cell 0, the periodic partner of the last cell
-      State<double> U0, U1, U1_previous, F_left, first_left;
-      if (periodic)
+      // cell c-1 into c), kept from one cell to the next
+      State<double> U0, U1, F_left;
+      traces<nm>(src, first, U0, U1);
+      if (first > 0 || periodic)
         {
-          traces(n_cells - 1, U0, U1_previous);
-          traces(0, U0, U1);
-          first_left = U0;
-          F_left     = phys.numerical_flux(U1_previous, U0, right, coefficients[n_cells - 1],
-                                       coefficients[0]);
+          const unsigned int left = first > 0 ? first - 1 : n_cells - 1;
+          State<double>      unused, U1_left;
+          traces<nm>(src, left, unused, U1_left);
+          F_left = phys.numerical_flux(U1_left, U0, right, coefficients[left], coefficients[first]);
         }
       else
-        {
-          traces(0, U0, U1);
-          F_left = -boundary_flux(*left_bc, U0, -1., x_left[0], t, coefficients[0]);
-        }
+        F_left = -boundary_flux(*left_bc, U0, -1., x_left[0], t, coefficients[0]);
 
-      for (unsigned int c = 0; c < n_cells; ++c)
+      for (unsigned int c = first; c < end; ++c)
         {
           const double *u           = src + c * dpc;
           const auto   &a           = coefficients[c];
@@ -431,7 +480,7 @@ namespace granular_dg::dg
           State<double> F_right, V0, V1;
           if (c + 1 < n_cells)
             {
-              traces(c + 1, V0, V1);
+              traces<nm>(src, c + 1, V0, V1);
               F_right = phys.numerical_flux(U1, V0, right, a, coefficients[c + 1]);
             }
           else if (periodic)
@@ -466,6 +515,11 @@ namespace granular_dg::dg
     std::array<std::array<double, max_modes>, max_points> basis{}, derivative{};
     std::array<double, max_modes>     at_0{}, at_1{};
     std::vector<Coefficients<double>> coefficients;
+    /// the cells to compute (null: all), and the cached wave speeds / h of
+    /// the cells with it (max_speed_impl) for the floor cell_speed_floor
+    const ActiveCells                *active = nullptr;
+    mutable std::vector<double>       cell_speed;
+    mutable double                    cell_speed_floor = 0;
     /// the position argument of source() at every quadrature point
     std::vector<typename internal::SourcePosition<Physics>::type> source_points;
   };

@@ -6,6 +6,7 @@
 #include <deal.II/fe/mapping.h>
 #include <deal.II/lac/la_parallel_vector.h>
 
+#include <granular_dg/dg/active_cells.h>
 #include <granular_dg/dg/time_integrator.h>
 
 #include <string>
@@ -99,6 +100,17 @@ namespace granular_dg::dg
     /// "matrix_free" or "line"
     virtual std::string
     engine_name() const = 0;
+
+    /// Compute only the cells of active's current step from now on (null:
+    /// all cells again): apply, apply_stage and the admissibility scan work
+    /// on those; apply_stage sets a destination's values of the cells just
+    /// left out to the source's; the wave-speed scan refreshes the cells of
+    /// the last step. False if the engine cannot (then nothing changes).
+    virtual bool
+    restrict_to(const ActiveCells * /*active*/)
+    {
+      return false;
+    }
 
   private:
     mutable VectorType rate;

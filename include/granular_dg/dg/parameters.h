@@ -28,6 +28,8 @@ namespace granular_dg::dg
     double       cfl    = 0.2;
     TimeScheme   scheme = TimeScheme::ssp_rk3;
     bool         check_stability_limit = true;
+    /// Time stepping/skip tolerance (ActiveCells); 0: compute every cell
+    double       skip_tolerance        = 0.;
     LimiterType  limiter      = LimiterType::none;
     std::string  limiter_name = "none";
     double       tvb_M        = 0.;

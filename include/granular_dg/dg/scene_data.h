@@ -7,6 +7,7 @@
 
 #include <granular_dg/base/checkpoint.h>
 #include <granular_dg/base/output.h>
+#include <granular_dg/dg/active_cells.h>
 #include <granular_dg/dg/boundary.h>
 #include <granular_dg/dg/modal_layout.h>
 #include <granular_dg/dg/operator.h>
@@ -42,6 +43,31 @@ namespace granular_dg::dg
     resuming() const
     {
       return resuming_run;
+    }
+
+    /// Set before initialize() when the run skips quiet cells (ActiveCells;
+    /// null otherwise): post_stage() and post_limiter() then work on the
+    /// cells of active_cells()->ranges() only, and end_of_step() may look at
+    /// those only, since no other cell changed.
+    void
+    set_active_cells(const ActiveCells *cells)
+    {
+      active = cells;
+    }
+    const ActiveCells *
+    active_cells() const
+    {
+      return active;
+    }
+
+    /// Whether post_stage() and post_limiter() honour active_cells() and act
+    /// on each cell alone (a friction projection does; a stage operation
+    /// that couples cells cannot). A run skips quiet cells only when every
+    /// hook with a stage_operation() says so.
+    virtual bool
+    honours_active_cells() const
+    {
+      return false;
     }
 
     /// Once the discretisation exists (the layout gives cell-wise access to
@@ -125,7 +151,8 @@ namespace granular_dg::dg
     {}
 
   private:
-    bool resuming_run = false;
+    bool               resuming_run = false;
+    const ActiveCells *active       = nullptr;
   };
 
   /// The hooks of a scene called one after the other (the first failing
@@ -144,6 +171,22 @@ namespace granular_dg::dg
       this->set_resuming(r);
       for (auto &h : list)
         h->set_resuming(r);
+    }
+    void
+    set_all_active_cells(const ActiveCells *cells)
+    {
+      this->set_active_cells(cells);
+      for (auto &h : list)
+        h->set_active_cells(cells);
+    }
+    /// the stage operation of a hook that does not honour active cells ("": none)
+    std::string
+    stage_operation_on_all_cells() const
+    {
+      for (const auto &h : list)
+        if (const auto name = h->stage_operation(); !name.empty() && !h->honours_active_cells())
+          return name;
+      return "";
     }
     void
     initialize(const DoFHandler<dim> &d, const Mapping<dim> &m,
@@ -247,6 +290,10 @@ namespace granular_dg::dg
     /// the time step uses max(lambda_max(U), this) as wave speed: for states
     /// at rest whose speed is 0 (sigma'(0) = 0), the speed the scene will reach
     double                              min_wave_speed = 0.;
+    /// whether the operator, its boundary data and sources and the hooks'
+    /// stage operations are the same at every time (a run may then skip
+    /// quiet cells: Time stepping/skip tolerance)
+    bool                                autonomous = false;
     /// the name of the evolution variable in messages ("t"; the hopper: "tau")
     std::string                         time_name = "t";
     /// where the run starts: time and, optionally, the state itself (a vector

@@ -65,6 +65,8 @@ namespace granular_dg::dg
     load(ByteReader &r) override;
     void
     finish(double t, RunResult &result, bool write_files) override;
+    bool
+    at_rest() const override;
     void
     set_phases(StepPhases *p) override
     {
@@ -111,6 +113,10 @@ namespace granular_dg::dg
     SSPRK3<>                         integrator;
     std::unique_ptr<LowStorageRK>    low_storage; ///< when method.scheme is one
     HookList<dim>                    hooks;
+    /// the cells a step computes, with Time stepping/skip tolerance > 0
+    std::unique_ptr<ActiveCells>     active;
+    /// the last CFL step time_step() gave
+    double                           cfl_step = 0;
     VectorType                       solution, last_good, benchmark_start;
     unsigned int                     troubled = 0;
     StepPhases                      *phases   = nullptr;
@@ -118,10 +124,20 @@ namespace granular_dg::dg
 
   /// An InputError naming Time stepping/scheme when the scene has a stage
   /// operation (SceneHooks::stage_operation) the scheme cannot carry: only
-  /// SSP-RK3 can. Scenes call it before they write anything; Solver again.
+  /// SSP-RK3 can; and one naming Time stepping/skip tolerance when the run
+  /// cannot skip cells. Scenes call it before they write anything; Solver again.
   template <int dim, typename Physics>
   void
   require_scheme_fits(const DiscretizationParameters &method, const SceneData<dim, Physics> &scene);
+
+  /// Why a run of this scene with this method cannot skip quiet cells
+  /// (Time stepping/skip tolerance > 0), "" when it can: the line engine,
+  /// SSP-RK3, an autonomous scene, and stage operations that honour active
+  /// cells.
+  template <int dim, typename Physics>
+  std::string
+  why_cells_cannot_be_skipped(const DiscretizationParameters &method,
+                              const SceneData<dim, Physics>  &scene);
 
   /// One run of a scene: a Solver driven by the TimeLoop. final_state, if
   /// given, gets the state at the end.

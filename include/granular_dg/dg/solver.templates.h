@@ -121,18 +121,52 @@ namespace granular_dg::dg
     limiter.reinit(dof_handler, solution);
     quadrature.reinit(limiter.layout());
     hooks.set_all_resuming(run.resume && write_files);
+    require_scheme_fits(method, scene);
+    if (method.skip_tolerance > 0)
+      {
+        // a step reaches (1 + 1 with a limiter) cells per stage
+        const unsigned int reach =
+          SSPRK3<>::n_stages * (method.limiter == LimiterType::none ? 1 : 2);
+        const auto        &layout = limiter.layout();
+        active = std::make_unique<ActiveCells>(layout.n_owned(),
+                                               Physics::n_components * layout.n_modes(), reach,
+                                               layout.n_owned() > 1 && layout.neighbor(0, 0) >= 0,
+                                               method.skip_tolerance);
+        AssertThrow(op->restrict_to(active.get()), ExcInternalError());
+        hooks.set_all_active_cells(active.get());
+      }
     hooks.initialize(dof_handler, mapping, limiter.layout());
     if (method.scheme != TimeScheme::ssp_rk3)
-      {
-        require_scheme_fits(method, scene);
-        low_storage = std::make_unique<LowStorageRK>(method.scheme);
-      }
+      low_storage = std::make_unique<LowStorageRK>(method.scheme);
+  }
+
+  template <int dim, typename Physics>
+  std::string
+  why_cells_cannot_be_skipped(const DiscretizationParameters &method,
+                              const SceneData<dim, Physics>  &scene)
+  {
+    const bool serial = !Utilities::MPI::job_supports_mpi() ||
+                        Utilities::MPI::n_mpi_processes(MPI_COMM_WORLD) == 1;
+    if (dim != 1 || method.engine == Engine::matrix_free || !serial)
+      return "the line engine (serial 1D runs)";
+    if (method.scheme != TimeScheme::ssp_rk3)
+      return "Time stepping/scheme = ssp_rk3";
+    if (!scene.autonomous)
+      return "a scene whose operator does not depend on time (the " + scene.scene +
+             " scene's boundary data or sources may)";
+    if (const auto op = HookList<dim>(scene.hooks).stage_operation_on_all_cells(); !op.empty())
+      return "stage operations that act cell by cell (this run has " + op + ")";
+    return "";
   }
 
   template <int dim, typename Physics>
   void
   require_scheme_fits(const DiscretizationParameters &method, const SceneData<dim, Physics> &scene)
   {
+    if (method.skip_tolerance > 0)
+      if (const std::string why = why_cells_cannot_be_skipped(method, scene); !why.empty())
+        require(false, "Time stepping/skip tolerance", method.skip_tolerance,
+                "0 here: skipping quiet cells needs " + why);
     if (method.scheme == TimeScheme::ssp_rk3)
       return;
     const std::string operation = HookList<dim>(scene.hooks).stage_operation();
@@ -187,6 +221,8 @@ namespace granular_dg::dg
         quadrature.project(*scene.initial, solution);
         limiter.apply(solution, scene.start_time);
       }
+    if (active)
+      active->reset();
     return scene.start_time;
   }
 
@@ -237,6 +273,7 @@ namespace granular_dg::dg
     if (!(std::isfinite(dt) && dt > 0))
       throw RunError("time step is " + format_number(dt) + " at " + scene.time_name + " = " +
                      format_number(t) + " (max wave speed/h = " + format_number(speed) + ")");
+    cfl_step = dt;
     return dt;
   }
 
@@ -250,7 +287,7 @@ namespace granular_dg::dg
     }
     {
       StepPhases::Scope scope(phases, StepPhases::limiter);
-      troubled = limiter.apply(u, stage_time);
+      troubled = limiter.apply(u, stage_time, active.get());
     }
     {
       StepPhases::Scope scope(phases, StepPhases::post_limiter_hook);
@@ -266,10 +303,21 @@ namespace granular_dg::dg
   {
     const internal::TimedOperator<dim> timed{*op, phases};
     const auto stage = [&](VectorType &u, const double s, const double w) { post_stage(u, s, w); };
+    if (active)
+      active->begin_step(dt, dt == cfl_step, solution);
     if (low_storage)
       low_storage->step(timed, solution, t, dt, stage);
     else
       integrator.step(timed, solution, t, dt, stage);
+    if (active)
+      active->end_step(solution);
+  }
+
+  template <int dim, typename Physics>
+  bool
+  Solver<dim, Physics>::at_rest() const
+  {
+    return active && active->at_rest();
   }
 
   template <int dim, typename Physics>
@@ -294,6 +342,8 @@ namespace granular_dg::dg
   Solver<dim, Physics>::restore(const Slot slot)
   {
     solution = slot == Slot::last_good ? last_good : benchmark_start;
+    if (active)
+      active->reset();
   }
 
   template <int dim, typename Physics>
@@ -370,6 +420,11 @@ namespace granular_dg::dg
     ByteWriter h;
     hooks.save(h);
     w.io(h.bytes);
+    if (active)
+      {
+        active->save(w);
+        w.io(limiter.troubled_cells());
+      }
   }
 
   template <int dim, typename Physics>
@@ -383,6 +438,14 @@ namespace granular_dg::dg
     load_cell_values(dof_handler, cells, solution);
     ByteReader h(hook_state);
     hooks.load(h);
+    if (active)
+      {
+        active->load(r);
+        std::vector<unsigned char> flags;
+        r.io(flags);
+        limiter.set_troubled_cells(flags);
+        op->restrict_to(active.get()); // forget the cached wave speeds
+      }
   }
 
   template <int dim, typename Physics>
@@ -410,6 +473,8 @@ namespace granular_dg::dg
           result.diagnostics.add("integral_" + names[c], integrals[c]);
         result.diagnostics.add("energy", energy());
       }
+    if (active)
+      result.diagnostics.add("skipped_cell_updates", active->skipped_fraction());
     hooks.finish(solution, t, result.diagnostics, directory, write_files);
   }
 

@@ -47,6 +47,7 @@ namespace granular_dg::column
           center[c] = cell_layout.cell(c)->center()[0];
         h = cell_layout.extent(0, 0);
         previous_sign.assign(n, 0);
+        moving.assign(n, 1);
         previous_state.assign(n, FrictionProjection::CellState::unloaded);
         // values at the cell centre and at the left end, per mode
         const unsigned int n1d = cell_layout.degree() + 1;
@@ -83,51 +84,18 @@ namespace granular_dg::column
       end_of_step(const dg::VectorType &U, const double t, const double dt,
                   const unsigned long) override
       {
-        const auto        &state    = friction.state().states();
-        const unsigned int n        = layout->n_owned();
-        const bool         implicit = friction.implicit();
-        // only the disturbed region counts: ahead of the front the scheme
-        // leaves round-off-sized velocities of either sign
-        const double tol = prm.threshold * std::abs(prm.u_b);
-        for (unsigned int c = 0; c < n; ++c)
-          {
-            if (std::abs(U.local_element(layout->index(c, 0, 0))) <= tol)
-              continue;
-            const double v0   = U.local_element(layout->index(c, 1, 0));
-            const int    sign = v0 > 0 ? 1 : (v0 < 0 ? -1 : 0);
-            if (sign * previous_sign[c] < 0)
-              ++velocity_sign_flips;
-            previous_sign[c] = sign;
-            if (!implicit)
-              continue;
-            if (state[c] == FrictionProjection::CellState::stuck)
-              {
-                for (unsigned int k = 0; k < layout->n_modes(); ++k)
-                  max_stuck_velocity =
-                    std::max(max_stuck_velocity, std::abs(U.local_element(layout->index(c, 1, k))));
-                max_stuck_multiplier =
-                  std::max(max_stuck_multiplier, std::abs(friction.state().multipliers()[c]));
-              }
-            // a stuck cell that starts to slide again: critical loading
-            if (previous_state[c] == FrictionProjection::CellState::stuck &&
-                state[c] == FrictionProjection::CellState::sliding)
-              {
-                ++critical_loadings;
-                if (first_critical_time < 0)
-                  {
-                    first_critical_time     = t;
-                    first_critical_position = center[c];
-                  }
-                last_critical_time = t;
-              }
-            previous_state[c] = state[c];
-          }
+        // the cells the step computed (with skipped cells: no other changed)
+        dg::for_active_ranges(active_cells(), layout->n_owned(),
+                              [&](const unsigned int first, const unsigned int end) {
+                                for (unsigned int c = first; c < end; ++c)
+                                  watch_cell(U, c, t);
+                              });
 
         // friction and wall work: int |v| sigma dz dt and sigma_b v(0) dt;
         // cells at rest (all velocity modes 0, e.g. stuck) add exactly 0
         const double friction_power = integrate(
           U, [&](const double u, const double v) { return std::abs(v) * system.stress(u); },
-          true);
+          [&](const unsigned int c) { return moving[c] != 0; });
         double v_wall = 0;
         for (unsigned int k = 0; k <= layout->degree(); ++k)
           v_wall += U.local_element(layout->index(0, 1, k)) * at_left[k];
@@ -249,25 +217,61 @@ namespace granular_dg::column
         return layout->value(U, c, comp, {{basis_values.data()}});
       }
 
-      /// skip_rest: leave out the cells whose velocity modes are all 0 (for
-      /// densities that vanish there; the sum is the same to the last bit)
-      template <typename Density>
-      double
-      integrate(const dg::VectorType &U, const Density &density,
-                const bool skip_rest = false) const
+      /// The sign flips, stuck cells and critical loadings of cell c after a
+      /// step, and whether it moves (a velocity mode is not 0).
+      void
+      watch_cell(const dg::VectorType &U, const unsigned int c, const double t)
       {
-        const unsigned int nm  = layout->degree() + 1;
-        double             sum = 0;
+        bool is_moving = false;
+        for (unsigned int k = 0; k < layout->n_modes(); ++k)
+          is_moving |= U.local_element(layout->index(c, 1, k)) != 0.;
+        moving[c] = is_moving;
+        // only the disturbed region counts: ahead of the front the scheme
+        // leaves round-off-sized velocities of either sign
+        if (std::abs(U.local_element(layout->index(c, 0, 0))) <= prm.threshold * std::abs(prm.u_b))
+          return;
+        const double v0   = U.local_element(layout->index(c, 1, 0));
+        const int    sign = v0 > 0 ? 1 : (v0 < 0 ? -1 : 0);
+        if (sign * previous_sign[c] < 0)
+          ++velocity_sign_flips;
+        previous_sign[c] = sign;
+        if (!friction.implicit())
+          return;
+        const auto &state = friction.state().states();
+        if (state[c] == FrictionProjection::CellState::stuck)
+          {
+            for (unsigned int k = 0; k < layout->n_modes(); ++k)
+              max_stuck_velocity =
+                std::max(max_stuck_velocity, std::abs(U.local_element(layout->index(c, 1, k))));
+            max_stuck_multiplier =
+              std::max(max_stuck_multiplier, std::abs(friction.state().multipliers()[c]));
+          }
+        // a stuck cell that starts to slide again: critical loading
+        if (previous_state[c] == FrictionProjection::CellState::stuck &&
+            state[c] == FrictionProjection::CellState::sliding)
+          {
+            ++critical_loadings;
+            if (first_critical_time < 0)
+              {
+                first_critical_time     = t;
+                first_critical_position = center[c];
+              }
+            last_critical_time = t;
+          }
+        previous_state[c] = state[c];
+      }
+
+      /// The integral of density(u, v) over the cells c with keep(c) (the
+      /// cells where it does not vanish: the sum is the same to the last bit).
+      template <typename Density, typename Keep>
+      double
+      integrate(const dg::VectorType &U, const Density &density, const Keep &keep) const
+      {
+        double sum = 0;
         for (unsigned int c = 0; c < layout->n_owned(); ++c)
           {
-            if (skip_rest)
-              {
-                bool at_rest = true;
-                for (unsigned int k = 0; k < nm && at_rest; ++k)
-                  at_rest = U.local_element(layout->index(c, 1, k)) == 0.;
-                if (at_rest)
-                  continue;
-              }
+            if (!keep(c))
+              continue;
             for (unsigned int i = 0; i < q_weights.size(); ++i)
               sum += q_weights[i] * h *
                      density(mode_value(U, c, 0, q_basis[i]), mode_value(U, c, 1, q_basis[i]));
@@ -389,7 +393,8 @@ namespace granular_dg::column
       {
         const Fronts f = fronts(U);
         const double energy =
-          integrate(U, [&](const double u, const double v) { return 0.5 * v * v + system.stored_energy(u); });
+          integrate(U, [&](const double u, const double v) { return 0.5 * v * v + system.stored_energy(u); },
+                    [](unsigned int) { return true; });
         // strain at the probe point
         const unsigned int probe = std::min(layout->n_owned() - 1,
                                             static_cast<unsigned int>(std::max(0., prm.probe / h)));
@@ -503,6 +508,8 @@ namespace granular_dg::column
       double                           h = 1.;
 
       std::vector<int>                           previous_sign;
+      /// per cell: a velocity mode is not 0 (after the last step that computed it)
+      std::vector<unsigned char>                 moving;
       std::vector<FrictionProjection::CellState> previous_state;
       unsigned long long                         velocity_sign_flips = 0, critical_loadings = 0;
       double max_stuck_velocity = 0, max_stuck_multiplier = 0;

@@ -54,6 +54,8 @@ namespace granular_dg::column
       // the paper's time step: c dt/dx <= CFL with c = sqrt(-sigma'(u*)), u* the
       // largest strain, here the wall strain
       scene.min_wave_speed = scene.physics.sound_speed(p.u_b);
+      // a constant wall load and gravity: the same operator at every time
+      scene.autonomous = true;
       return scene;
     }
 

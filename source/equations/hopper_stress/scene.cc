@@ -172,6 +172,7 @@ namespace granular_dg::hopper
 
       require_reasonable_snapshot_count(
         common, dg::snapshot_bytes(p.cells, method.degree, 1, 6, common.write_vtu));
+      dg::require_scheme_fits(method, scene);
       begin_output(common);
       if (!common.benchmark.enabled)
         {

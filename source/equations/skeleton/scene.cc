@@ -104,6 +104,7 @@ namespace granular_dg::skeleton
       require_reasonable_snapshot_count(
         common, dg::snapshot_bytes(scene.triangulation->n_global_active_cells(), method.degree,
                                    dim, 1, common.write_vtu));
+      dg::require_scheme_fits(method, scene);
       begin_output(common);
       if (common.convergence)
         dg::run_convergence_study<dim, System<dim>>(

@@ -85,22 +85,33 @@ namespace granular_dg::column
         }
     }
 
-    /// Apply the step with weight w to the stage vector U (owned cells).
+    /// Apply the step with weight w to the stage vector U (owned cells; with
+    /// active cells those of the current step).
     void
-    apply(LinearAlgebra::distributed::Vector<double> &U, const double w)
+    apply(LinearAlgebra::distributed::Vector<double> &U, const double w,
+          const dg::ActiveCells *active = nullptr)
     {
-      dg::with_n_modes(n_modes, [&](auto nm) { apply_impl<decltype(nm)::value>(U, w); });
+      dg::with_n_modes(n_modes, [&](auto nm) {
+        const auto range = [&](const unsigned int first, const unsigned int end) {
+          apply_impl<decltype(nm)::value>(U, w, first, end);
+        };
+        dg::for_active_ranges(active, layout.n_owned(), range);
+      });
     }
 
     /// Keep the cells the friction holds at rest: a limiter that mixes
     /// components (characteristic limiting) must not set them in motion.
     void
-    keep_stuck_at_rest(LinearAlgebra::distributed::Vector<double> &U) const
+    keep_stuck_at_rest(LinearAlgebra::distributed::Vector<double> &U,
+                       const dg::ActiveCells *active = nullptr) const
     {
-      for (unsigned int c = 0; c < layout.n_owned(); ++c)
-        if (state[c] == CellState::stuck)
-          for (unsigned int k = 0; k < n_modes; ++k)
-            U.local_element(layout.index(c, 1, k)) = 0.;
+      const auto range = [&](const unsigned int first, const unsigned int end) {
+        for (unsigned int c = first; c < end; ++c)
+          if (state[c] == CellState::stuck)
+            for (unsigned int k = 0; k < n_modes; ++k)
+              U.local_element(layout.index(c, 1, k)) = 0.;
+      };
+      dg::for_active_ranges(active, layout.n_owned(), range);
     }
 
     /// sgn(v) of the last step per owned cell (the friction multiplier)
@@ -116,6 +127,16 @@ namespace granular_dg::column
       return state;
     }
 
+    /// The multipliers and states, for a checkpoint (a run that skips quiet
+    /// cells keeps those of the cells it leaves out).
+    template <typename Archive>
+    void
+    state_io(Archive &ar)
+    {
+      ar.io(multiplier);
+      ar.io(state);
+    }
+
   private:
     static constexpr unsigned int max_modes = 5;
 
@@ -127,12 +148,13 @@ namespace granular_dg::column
 
     template <unsigned int nm>
     void
-    apply_impl(LinearAlgebra::distributed::Vector<double> &U, const double w)
+    apply_impl(LinearAlgebra::distributed::Vector<double> &U, const double w,
+               const unsigned int first, const unsigned int end)
     {
       const std::size_t stride = mode_stride();
       double           *data   = U.begin();
       double            R[nm];
-      for (unsigned int c = 0; c < layout.n_owned(); ++c)
+      for (unsigned int c = first; c < end; ++c)
         {
           const double *u = data + layout.index(c, 0, 0);
           double       *v = data + layout.index(c, 1, 0);
@@ -200,14 +222,21 @@ namespace granular_dg::column
       const double printed[3] = {1., 2., 1.5};
       const double w          = printed_weights ? weight * printed[stage % 3] : weight;
       ++stage;
-      projection->apply(U, w);
+      projection->apply(U, w, active_cells());
     }
 
     void
     post_limiter(dg::VectorType &U, double) override
     {
       if (implicit())
-        projection->keep_stuck_at_rest(U);
+        projection->keep_stuck_at_rest(U, active_cells());
+    }
+
+    /// the projection acts on each cell alone
+    bool
+    honours_active_cells() const override
+    {
+      return true;
     }
 
     std::string
@@ -220,12 +249,14 @@ namespace granular_dg::column
     save(ByteWriter &w) override
     {
       w.io(stage);
+      projection->state_io(w);
     }
 
     void
     load(ByteReader &r) override
     {
       r.io(stage);
+      projection->state_io(r);
     }
 
     /// whether the friction is the implicit projection
