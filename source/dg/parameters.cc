@@ -152,6 +152,14 @@ namespace granular_dg::dg
     prm.declare_entry("TVB constant", "0", Patterns::Double(0),
                       "M of the TVB minmod: slopes with |slope| <= M h^2 are not "
                       "limited (0 = TVD minmod).");
+    prm.declare_entry("indicator", "everywhere", Patterns::Selection("everywhere|modal_energy"),
+                      "Which cells the limiter examines: everywhere (every cell), or "
+                      "modal_energy (only the cells whose indicator variable, named by the "
+                      "physics, has too much energy in its highest Legendre modes: the "
+                      "indicator of Hennemann et al. 2021; doc/engine.md).");
+    prm.declare_entry("indicator threshold", "0", Patterns::Double(0, 1),
+                      "Share of the energy in the highest modes above which modal_energy "
+                      "flags a cell; 0: 0.5 10^(-1.8 (p+1)^(1/4)) for degree p.");
     prm.leave_subsection();
 
     prm.enter_subsection("Output");
@@ -197,6 +205,10 @@ namespace granular_dg::dg
     prm.enter_subsection("Limiter");
     limiter_name = prm.get("scheme");
     tvb_M        = prm.get_double("TVB constant");
+    indicator    = EnumNames<TroubleIndicator>({{TroubleIndicator::everywhere, "everywhere"},
+                                             {TroubleIndicator::modal_energy, "modal_energy"}})
+                  .parse("Limiter/indicator", prm.get("indicator"));
+    indicator_threshold = prm.get_double("indicator threshold");
     prm.leave_subsection();
     const EnumNames<LimiterType> limiter_names(
       {{LimiterType::none, "none"},

@@ -15,10 +15,11 @@ fraction of cell updates skipped and when the run came to rest (the stored
 output fails the test if they change); the largest difference goes to stderr.
 """
 import argparse
-import json
 import os
-import subprocess
 import sys
+
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), '..', 'common'))
+import granular_run  # noqa: E402
 
 ROUND_OFF_COLUMNS = {'sgn_v', 'strain_auxiliary'}
 
@@ -32,16 +33,7 @@ args = a.parse_args()
 
 
 def run(name, skip):
-    cmd = [args.exe, args.prm, '--set', f'Output/directory={name}', '--set',
-           'Output/progress interval=0', '--set', f'Time stepping/skip tolerance={skip:g}']
-    for s in args.set:
-        cmd += ['--set', s]
-    p = subprocess.run(cmd, capture_output=True, text=True)
-    print(f'{name}: exit {p.returncode}')
-    if p.returncode != 0:
-        sys.exit(p.stderr)
-    with open(os.path.join(name, 'summary.json')) as f:
-        return json.load(f)
+    return granular_run.run(args.exe, args.prm, name, [f'Time stepping/skip tolerance={skip:g}'] + args.set)
 
 
 def read(path):

@@ -14,11 +14,11 @@ velocity of 1e-40) are not compared. The largest difference goes to stderr.
 """
 import argparse
 import os
-import subprocess
 import sys
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), '..', 'common'))
 import csv_compare  # noqa: E402
+import granular_run  # noqa: E402
 
 a = argparse.ArgumentParser()
 a.add_argument('exe')
@@ -28,14 +28,7 @@ a.add_argument('--set', action='append', default=[])
 args = a.parse_args()
 
 for engine in ('line', 'matrix_free'):
-    cmd = [args.exe, args.prm, '--set', f'Output/directory={engine}',
-           '--set', 'Output/progress interval=0', '--set', f'Discretization/engine={engine}']
-    for s in args.set:
-        cmd += ['--set', s]
-    p = subprocess.run(cmd, capture_output=True, text=True)
-    print(f'{engine}: exit {p.returncode}')
-    if p.returncode != 0:
-        sys.exit(p.stderr)
+    granular_run.run(args.exe, args.prm, engine, [f'Discretization/engine={engine}'] + args.set)
 
 files = sorted(f for f in os.listdir('line') if f.startswith('profile-') and f.endswith('.csv'))
 worst, where = 0., '-'

@@ -9,6 +9,7 @@
 #include <granular_dg/dg/modal_layout.h>
 
 #include <array>
+#include <cmath>
 #include <optional>
 #include <vector>
 
@@ -23,6 +24,23 @@ namespace granular_dg::dg
     Tensor<1, n_components>         difference; ///< ghost average - cell average
     std::array<bool, n_components>  known;      ///< false: use the other side's difference
   };
+
+  /// Which cells the limiter examines: every cell (the TVB test alone), or
+  /// the cells a smoothness indicator flags (Limiter/indicator).
+  enum class TroubleIndicator
+  {
+    everywhere,
+    modal_energy
+  };
+
+  /// The threshold of the modal-energy indicator for degree p (Hennemann,
+  /// Winters & Gassner 2021, eq. (41); Trixi.jl's IndicatorHennemannGassner):
+  /// T(p) = 0.5 10^(-1.8 (p + 1)^(1/4)).
+  inline double
+  modal_energy_threshold(const unsigned int degree)
+  {
+    return 0.5 * std::pow(10., -1.8 * std::pow(degree + 1., 0.25));
+  }
 
   /// What the limiter limits: nothing, the conserved variables, the
   /// characteristic fields, or variables the physics names (its
@@ -73,6 +91,21 @@ namespace granular_dg::dg
    * boundary determines it (a field it does not determine uses the
    * difference on the other side, as at an outflow boundary). std::nullopt
    * keeps the default for that face.
+   *
+   * With the modal_energy indicator (set_indicator()) only the cells whose
+   * indicator variable (the component Physics::indicator_component) is not
+   * smooth go through the TVB test: with e_k the energy of the Legendre
+   * modes of degree k (in 2D: of largest directional degree k) of that
+   * component, the cell is flagged when the top modes' share
+   * E = e_p / sum_k e_k exceeds the threshold (the modal decay of Persson &
+   * Peraire 2006; by default the threshold T(p) of Hennemann et al. 2021).
+   * A smooth function's modes decay fast and E stays small; a jump inside
+   * the cell puts a share of O(1/p) of the energy into the top modes. Cells
+   * whose indicator variable is below 1e-10 of its largest cell mean (the
+   * round-off ahead of a front) are not flagged. The
+   * mean counts in the sum: a sine crossing zero is not flagged for its
+   * small mean (Trixi's second ratio, e_{p-1} / sum_{k<p} e_k, would be,
+   * for variables that change sign).
    */
   template <int dim, typename Physics>
   class ModalLimiter
@@ -98,6 +131,19 @@ namespace granular_dg::dg
     /// cells of their current step (the others keep their flags).
     unsigned int
     apply(VectorType &solution, double t = 0., const ActiveCells *active = nullptr) const;
+
+    /// Examine only the cells the indicator flags (threshold 0: the
+    /// automatic modal_energy_threshold() of the degree).
+    void
+    set_indicator(TroubleIndicator indicator, double threshold = 0.);
+
+    /// Cells the indicator flagged in the last apply() (all examined cells
+    /// with TroubleIndicator::everywhere), on this rank.
+    unsigned int
+    n_flagged() const
+    {
+      return flagged;
+    }
 
     /// Troubled flags of the last apply(), one per locally owned active cell
     /// in the order of dof_handler.active_cell_iterators().
@@ -161,6 +207,11 @@ namespace granular_dg::dg
     unsigned int
     apply_impl(VectorType &u, double t, const ActiveCells *active) const;
 
+    /// Whether the indicator flags the cell with modes x.
+    template <unsigned int n1>
+    bool
+    indicated(const double *x) const;
+
     /// Limit the modes x of owned cell i; true if it was troubled.
     template <unsigned int n1>
     bool
@@ -202,7 +253,13 @@ namespace granular_dg::dg
     /// L_k(0) and L_k(1)
     std::vector<double> at_0, at_1;
 
+    TroubleIndicator indicator           = TroubleIndicator::everywhere;
+    double           indicator_threshold = 0.;
+    /// cells whose indicator variable is below this size are not flagged
+    mutable double   indicator_floor = 0.;
+
     mutable std::vector<unsigned char> troubled;
+    mutable unsigned int               flagged = 0;
     /// the (ghosted) solution of the current apply(), for the averages
     mutable const double *averages = nullptr;
     /// physics_variables: W(average) of every cell of the current apply()

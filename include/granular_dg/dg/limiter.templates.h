@@ -286,10 +286,43 @@ namespace granular_dg::dg
   }
 
   template <int dim, typename Physics>
+  void
+  ModalLimiter<dim, Physics>::set_indicator(const TroubleIndicator ind, const double threshold)
+  {
+    static_assert(Physics::indicator_component < Physics::n_components);
+    indicator           = ind;
+    indicator_threshold = threshold > 0 ? threshold : modal_energy_threshold(cells.degree());
+  }
+
+  template <int dim, typename Physics>
+  template <unsigned int n1>
+  bool
+  ModalLimiter<dim, Physics>::indicated(const double *x) const
+  {
+    constexpr unsigned int n_modes = dim == 1 ? n1 : n1 * n1;
+    constexpr unsigned int p       = n1 - 1;
+    const double          *q       = x + Physics::indicator_component * n_modes;
+    // energy of the modes by degree (in 2D the larger of the two degrees)
+    std::array<double, n1> level{};
+    for (unsigned int m = 0; m < n_modes; ++m)
+      level[std::max(m % n1, m / n1)] += q[m] * q[m];
+    double total = 0;
+    for (const double e : level)
+      total += e;
+    // round-off-sized values (ahead of a front) are not a shock
+    if (!(total > indicator_floor * indicator_floor))
+      return false;
+    return level[p] / total > indicator_threshold;
+  }
+
+  template <int dim, typename Physics>
   template <unsigned int n1>
   bool
   ModalLimiter<dim, Physics>::limit_cell(const unsigned int i, double *x) const
   {
+    if (indicator == TroubleIndicator::modal_energy && !indicated<n1>(x))
+      return false;
+    ++flagged;
     constexpr unsigned int nc      = n_components;
     constexpr unsigned int n_modes = dim == 1 ? n1 : n1 * n1;
     const State            avg     = average(i);
@@ -351,6 +384,15 @@ namespace granular_dg::dg
             limiting_values[i] = physics.limiting_variables(average(i), coefficients[i]);
         }
     double *u_data = u.begin();
+    flagged        = 0;
+    if (indicator == TroubleIndicator::modal_energy)
+      {
+        // the scale of the indicator variable: its largest cell mean
+        double scale = 0;
+        for (unsigned int i = 0; i < cells.n_owned(); ++i)
+          scale = std::max(scale, std::abs(average(i)[Physics::indicator_component]));
+        indicator_floor = 1e-10 * Utilities::MPI::max(scale, u.get_mpi_communicator());
+      }
     const auto limit_range = [&](const unsigned int first, const unsigned int end) {
       for (unsigned int i = first; i < end; ++i)
         troubled[i] = limit_cell<n1>(i, u_data + base[i]);

@@ -33,6 +33,10 @@ namespace granular_dg::dg
     LimiterType  limiter      = LimiterType::none;
     std::string  limiter_name = "none";
     double       tvb_M        = 0.;
+    /// which cells the limiter examines, and the indicator's threshold
+    /// (0: the automatic one of the degree)
+    TroubleIndicator indicator           = TroubleIndicator::everywhere;
+    double           indicator_threshold = 0.;
     unsigned int profile_points = 0;
     bool         write_modes    = false;
 

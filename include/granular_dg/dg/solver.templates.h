@@ -119,6 +119,7 @@ namespace granular_dg::dg
     op->initialize_vector(solution);
     op->initialize_vector(last_good);
     limiter.reinit(dof_handler, solution);
+    limiter.set_indicator(method.indicator, method.indicator_threshold);
     quadrature.reinit(limiter.layout());
     hooks.set_all_resuming(run.resume && write_files);
     require_scheme_fits(method, scene);
@@ -378,6 +379,8 @@ namespace granular_dg::dg
       header.push_back("integral_" + n);
     header.push_back("energy");
     header.push_back("troubled_cells");
+    if (method.indicator != TroubleIndicator::everywhere)
+      header.push_back("flagged_cells");
     if (scene.exact)
       {
         header.push_back("l2_error");
@@ -396,6 +399,8 @@ namespace granular_dg::dg
     std::vector<double> row = quadrature.integrals(solution);
     row.push_back(energy());
     row.push_back(Utilities::MPI::sum(troubled, solution.get_mpi_communicator()));
+    if (method.indicator != TroubleIndicator::everywhere)
+      row.push_back(Utilities::MPI::sum(limiter.n_flagged(), solution.get_mpi_communicator()));
     if (scene.exact)
       {
         const auto e  = errors(t);
@@ -517,6 +522,17 @@ namespace granular_dg::dg
     const internal::DerivedFields<dim, Physics> derived(scene.physics);
     data_out.add_data_vector(solution, Physics::component_names());
     data_out.add_data_vector(solution, derived);
+    // the cells the limiter modified in the last stage
+    Vector<float> troubled_field;
+    if (limiter.get_type() != LimiterType::none)
+      {
+        troubled_field.reinit(dof_handler.get_triangulation().n_active_cells());
+        unsigned int k = 0;
+        for (const auto &cell : dof_handler.active_cell_iterators())
+          if (cell->is_locally_owned())
+            troubled_field[cell->active_cell_index()] = limiter.troubled_cells()[k++];
+        data_out.add_data_vector(troubled_field, "troubled", DataOut<dim>::type_cell_data);
+      }
     data_out.build_patches(mapping, std::max(1u, method.degree));
 
     const unsigned int n_ranks = Utilities::MPI::n_mpi_processes(comm);

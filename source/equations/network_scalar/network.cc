@@ -173,6 +173,7 @@ namespace granular_dg::network
         ed->op->reinit(ed->mapping, ed->dof_handler);
         ed->limiter = std::make_unique<EdgeLimiter>(system, disc.limiter, disc.tvb_M, boundary);
         ed->limiter->reinit(ed->dof_handler);
+        ed->limiter->set_indicator(disc.indicator, disc.indicator_threshold);
         ed->quadrature.reinit(ed->layout());
 
         const auto &layout = ed->layout();

@@ -259,6 +259,8 @@ namespace granular_dg::network
       c.disc.limiter        = method.limiter;
       c.disc.limiter_name   = method.limiter_name;
       c.disc.tvb_M          = method.tvb_M;
+      c.disc.indicator      = method.indicator;
+      c.disc.indicator_threshold = method.indicator_threshold;
       c.disc.profile_points = method.profile_points;
       c.disc.write_vtu      = common.write_vtu;
 

@@ -72,6 +72,9 @@ namespace granular_dg::column
   {
   public:
     static constexpr unsigned int n_components    = 2;
+    /// the component the troubled-cell indicator watches
+    /// (Limiter/indicator): the strain (its jumps are the fronts)
+    static constexpr unsigned int indicator_component = 0;
     static constexpr unsigned int n_coefficients  = 0;
     static constexpr const char  *name            = "granular column with Coulomb wall friction";
     static constexpr bool         has_source_term = true;

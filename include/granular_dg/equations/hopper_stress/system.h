@@ -184,6 +184,9 @@ namespace granular_dg::hopper
   public:
     static constexpr int          dim             = 1;
     static constexpr unsigned int n_components    = 2;
+    /// the component the troubled-cell indicator watches
+    /// (Limiter/indicator): T_rr
+    static constexpr unsigned int indicator_component = 0;
     static constexpr unsigned int n_coefficients  = 0;
     static constexpr const char  *name            = "Mohr-Coulomb hopper stress (passive state)";
     static constexpr bool         has_source_term = true;

@@ -83,6 +83,9 @@ namespace granular_dg::elasticity
   {
   public:
     static constexpr unsigned int n_components    = dim + 1;
+    /// the component the troubled-cell indicator watches
+    /// (Limiter/indicator): the strain (shocks are strain jumps)
+    static constexpr unsigned int indicator_component = 0;
     static constexpr unsigned int n_coefficients  = 3;
     static constexpr const char  *name            = "nonlinear elasticity";
     static constexpr bool         has_source_term = false;

@@ -55,6 +55,8 @@ namespace granular_dg::network
     dg::LimiterType   limiter = dg::LimiterType::none;
     std::string       limiter_name = "none";
     double            tvb_M   = 0.;
+    dg::TroubleIndicator indicator = dg::TroubleIndicator::everywhere;
+    double            indicator_threshold = 0.;
     /// 2^l at grid level l: an edge of length L gets round(L * this) cells
     double            cells_per_unit_length = 256;
     /// dx_0 = factor * sum over the vertex ends of h_k / 2 (1: the paper's

@@ -226,6 +226,9 @@ namespace granular_dg::network
   {
   public:
     static constexpr unsigned int n_components    = 1;
+    /// the component the troubled-cell indicator watches
+    /// (Limiter/indicator): u
+    static constexpr unsigned int indicator_component = 0;
     static constexpr unsigned int n_coefficients  = 0;
     static constexpr const char  *name            = "scalar conservation law";
     static constexpr bool         has_source_term = false;

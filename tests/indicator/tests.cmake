@@ -1,0 +1,21 @@
+# indicator tests (included by tests/CMakeLists.txt): the troubled-cell
+# indicator (Limiter/indicator = modal_energy, doc/engine.md): the limiter
+# examines only the cells whose indicator variable is not smooth.
+
+# A smooth wave is flagged nowhere: the linear wave of
+# prm/elasticity_linear_wave.prm (P2, 32 cells, one period) with the
+# characteristic limiter: flagged_cells and troubled_cells are 0 at every
+# output time (with the limiter in every cell, its TVB test clips the
+# extrema), and the L2 error is the unlimited scheme's.
+granular_dg_test(indicator/smooth_flags_nothing PRM ../prm/elasticity_linear_wave.prm
+  ARGS --set Limiter/scheme=characteristic --set Limiter/indicator=modal_energy
+  COMPARE timeseries.csv:time,flagged_cells,troubled_cells NUMDIFF -a 0 -r 0)
+
+# A shock is flagged, and little else: prm/elasticity_shock.prm with the
+# indicator; at t = 80, 160, 240 between 1 and 12 of the 1200 cells are
+# flagged, and the solution has no undershoot (strain >= -0.01), so the
+# flagged cells hold the shock (tests/indicator/shock_cells.py).
+granular_dg_test(indicator/shock_flagged EXE ${TEST_PYTHON}
+  ARGS ${CMAKE_CURRENT_SOURCE_DIR}/indicator/shock_cells.py $<TARGET_FILE:granular_dg>
+       ${CMAKE_CURRENT_SOURCE_DIR}/../prm/elasticity_shock.prm
+  COMPARE stdout KEEP_OUTPUT NUMDIFF -a 0 -r 0)
