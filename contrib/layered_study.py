@@ -7,8 +7,10 @@ flux against the interface-aware one, and the work-precision chart.
 Configurations: naive = local Lax-Friedrichs on (eps, m) with the
 componentwise minmod limiter (the direct implementation of seed 001, 2.1);
 aware = the impedance (linearised Godunov) flux with the minmod limiter on
-the flux variables (sigma, u); aware-nolim = the impedance flux without a
-limiter. Degrees 1-3 on 2, 4, 8, 16, 32 cells per layer (p times cells per
+the flux variables (sigma, u) in every cell; aware-indicator = the same
+limiter in the cells the modal-energy indicator flags (Limiter/indicator =
+modal_energy, as prm/layered_1d.prm ships); aware-nolim = the impedance flux
+without a limiter. Degrees 1-3 on 2, 4, 8, 16, 32 cells per layer (p times cells per
 layer at most 32, the reference's resolution), CFL 0.8/(2p+1) (SSP-RK3
 DG is stable to about 1/(2p+1)).
 For every run: the L1 error of the strain against the reference (a
@@ -16,6 +18,10 @@ modes-NNNN.csv of a finer run, e.g. P3 with 32 cells per layer), the largest
 stress jump across a material interface, the position of the leading stress
 peak against the reference's, and the CPU time of the time loop. Writes
 OUT_DIR/layered-study.csv and OUT_DIR/layered-work-precision.png.
+
+    --only aware-indicator --rows-from doc/figures/layered_study.csv
+
+runs one configuration and takes the others' rows from an earlier study.
 """
 import argparse
 import csv
@@ -30,10 +36,12 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt
 import numpy as np
 
+# name: (numerical flux, limiter, troubled-cell indicator)
 CONFIGS = {
-    "aware": ("impedance", "flux_variables"),
-    "aware-nolim": ("impedance", "none"),
-    "naive": ("local_lax_friedrichs", "componentwise"),
+    "aware": ("impedance", "flux_variables", "everywhere"),
+    "aware-indicator": ("impedance", "flux_variables", "modal_energy"),
+    "aware-nolim": ("impedance", "none", "everywhere"),
+    "naive": ("local_lax_friedrichs", "componentwise", "everywhere"),
 }
 
 
@@ -56,7 +64,13 @@ def main():
     p.add_argument("out")
     p.add_argument("reference")
     p.add_argument("--quick", action="store_true", help="degree 2, 4 and 8 cells per layer only")
+    p.add_argument("--only", help="comma-separated configurations to run (default: all)")
+    p.add_argument("--rows-from", help="an earlier layered-study.csv: the rows of the configurations not run")
     a = p.parse_args()
+    run = a.only.split(",") if a.only else list(CONFIGS)
+    for name in run:
+        if name not in CONFIGS:
+            p.error("--only: unknown configuration '%s' (allowed: %s)" % (name, ", ".join(CONFIGS)))
     here = os.path.dirname(os.path.abspath(__file__))
     prm = os.path.join(here, "..", "prm", "layered_1d.prm")
     ref_dir = os.path.dirname(os.path.abspath(a.reference))
@@ -64,7 +78,15 @@ def main():
     degrees = (2,) if a.quick else (1, 2, 3)
     resolutions = (4, 8) if a.quick else (2, 4, 8, 16, 32)
     rows = []
-    for name, (flux, limiter) in CONFIGS.items():
+    if a.rows_from:
+        with open(a.rows_from) as f:
+            rows = [{k: v if k in ("config", "flux", "limiter", "indicator") else
+                     int(v) if k in ("degree", "cells_per_layer", "n_dofs") else float(v) for k, v in r.items()}
+                    for r in csv.DictReader(f) if r["config"] not in run]
+        for r in rows:
+            r.setdefault("indicator", "everywhere")
+    for name in run:
+        flux, limiter, indicator = CONFIGS[name]
         for degree in degrees:
             for per_layer in resolutions:
                 if degree * per_layer > 32:
@@ -79,12 +101,14 @@ def main():
                                     "--set", "Discretization/degree=%d" % degree,
                                     "--set", "Discretization/numerical flux=" + flux,
                                     "--set", "Limiter/scheme=" + limiter,
+                                    "--set", "Limiter/indicator=" + indicator,
                                     "--set", "Time stepping/CFL number=%g" % (0.8 / (2 * degree + 1)),
                                     "--set", "Exact solution/reference file=" + os.path.abspath(a.reference)],
                                    check=True, stdout=subprocess.DEVNULL)
                 with open(os.path.join(d, "summary.json")) as f:
                     s = json.load(f)
-                rows.append({"config": name, "flux": flux, "limiter": limiter, "degree": degree,
+                rows.append({"config": name, "flux": flux, "limiter": limiter,
+                             "indicator": indicator, "degree": degree,
                              "cells_per_layer": per_layer, "n_dofs": s["n_dofs"],
                              "l1_strain_error": s["errors"]["component_0_l1_l2_linf"][0],
                              "interface_stress_jump_max": s["diagnostics"]["interface_stress_jump_max"],
@@ -95,12 +119,12 @@ def main():
                 print(rows[-1], flush=True)
     os.makedirs(a.out, exist_ok=True)
     with open(os.path.join(a.out, "layered-study.csv"), "w") as f:
-        w = csv.DictWriter(f, fieldnames=list(rows[0].keys()))
+        w = csv.DictWriter(f, fieldnames=list(rows[-1].keys()))
         w.writeheader()
         w.writerows(rows)
 
     fig, ax = plt.subplots(figsize=(7, 5))
-    styles = {"naive": "s--", "aware": "o-", "aware-nolim": "^:"}
+    styles = {"naive": "s--", "aware": "o-", "aware-indicator": "D-.", "aware-nolim": "^:"}
     for name in CONFIGS:
         for degree in degrees:
             sel = [r for r in rows if r["config"] == name and r["degree"] == degree and
