@@ -152,14 +152,19 @@ namespace granular_dg::dg
     prm.declare_entry("TVB constant", "0", Patterns::Double(0),
                       "M of the TVB minmod: slopes with |slope| <= M h^2 are not "
                       "limited (0 = TVD minmod).");
-    prm.declare_entry("indicator", "everywhere", Patterns::Selection("everywhere|modal_energy"),
-                      "Which cells the limiter examines: everywhere (every cell), or "
+    prm.declare_entry("indicator", "everywhere",
+                      Patterns::Selection("everywhere|modal_energy|kxrcf"),
+                      "Which cells the limiter examines: everywhere (every cell), "
                       "modal_energy (only the cells whose indicator variable, named by the "
                       "physics, has too much energy in its highest Legendre modes: the "
-                      "indicator of Hennemann et al. 2021; doc/engine.md).");
-    prm.declare_entry("indicator threshold", "0", Patterns::Double(0, 1),
-                      "Share of the energy in the highest modes above which modal_energy "
-                      "flags a cell; 0: 0.5 10^(-1.8 (p+1)^(1/4)) for degree p.");
+                      "indicator of Hennemann et al. 2021), or kxrcf (only the cells with "
+                      "large jumps of the indicator variable across their faces: "
+                      "Krivodonova et al. 2004); doc/engine.md.");
+    prm.declare_entry("indicator threshold", "0", Patterns::Double(0),
+                      "modal_energy: the share of the energy in the highest modes above "
+                      "which a cell is flagged, in (0, 1); kxrcf: the bound on the "
+                      "normalised face jumps; 0: automatic (0.5 10^(-1.8 (p+1)^(1/4)) for "
+                      "degree p, 1 for kxrcf).");
     prm.leave_subsection();
 
     prm.enter_subsection("Output");
@@ -206,9 +211,14 @@ namespace granular_dg::dg
     limiter_name = prm.get("scheme");
     tvb_M        = prm.get_double("TVB constant");
     indicator    = EnumNames<TroubleIndicator>({{TroubleIndicator::everywhere, "everywhere"},
-                                             {TroubleIndicator::modal_energy, "modal_energy"}})
+                                             {TroubleIndicator::modal_energy, "modal_energy"},
+                                             {TroubleIndicator::kxrcf, "kxrcf"}})
                   .parse("Limiter/indicator", prm.get("indicator"));
     indicator_threshold = prm.get_double("indicator threshold");
+    require(indicator != TroubleIndicator::modal_energy || indicator_threshold < 1,
+            "Limiter/indicator threshold", indicator_threshold,
+            "must be in [0, 1) with indicator = modal_energy (a share of the energy; "
+            "0 = automatic)");
     prm.leave_subsection();
     const EnumNames<LimiterType> limiter_names(
       {{LimiterType::none, "none"},

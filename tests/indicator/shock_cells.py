@@ -1,9 +1,9 @@
 #!/usr/bin/python3
 """The troubled-cell indicator on a shock: prm/elasticity_shock.prm (a
 compressive pulse that steepens into a shock, P2, 1200 cells, characteristic
-limiter) with Limiter/indicator = modal_energy.
+limiter) with Limiter/indicator = modal_energy (default) or kxrcf.
 
-usage: shock_cells.py EXE PRM [--max-flagged N] [--set Section/name=value ...]
+usage: shock_cells.py EXE PRM [--indicator modal_energy|kxrcf] [--max-flagged N] [--set ...]
 
 Prints, per output time, whether the indicator flagged some cells and no more
 than N (a handful around the shock, where the limiter in every cell finds
@@ -23,12 +23,13 @@ import granular_run  # noqa: E402
 a = argparse.ArgumentParser()
 a.add_argument('exe')
 a.add_argument('prm')
+a.add_argument('--indicator', default='modal_energy')
 a.add_argument('--max-flagged', type=int, default=12)
 a.add_argument('--set', action='append', default=[])
 args = a.parse_args()
 
 summary = granular_run.run(args.exe, args.prm, 'run',
-                 ['Limiter/indicator=modal_energy', 'Output/write vtu=false'] + args.set)
+                 ['Limiter/indicator=' + args.indicator, 'Output/write vtu=false'] + args.set)
 with open('run/timeseries.csv') as f:
     rows = list(csv.DictReader(f))
 for r in rows[1:]:

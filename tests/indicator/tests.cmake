@@ -19,3 +19,13 @@ granular_dg_test(indicator/shock_flagged EXE ${TEST_PYTHON}
   ARGS ${CMAKE_CURRENT_SOURCE_DIR}/indicator/shock_cells.py $<TARGET_FILE:granular_dg>
        ${CMAKE_CURRENT_SOURCE_DIR}/../prm/elasticity_shock.prm
   COMPARE stdout KEEP_OUTPUT NUMDIFF -a 0 -r 0)
+
+# The same two cases with the KXRCF indicator (face jumps of the stress):
+# nothing flagged on the smooth wave; at the shock, 1 to 30 of 1200 cells.
+granular_dg_test(indicator/kxrcf_smooth_flags_nothing PRM ../prm/elasticity_linear_wave.prm
+  ARGS --set Limiter/scheme=characteristic --set Limiter/indicator=kxrcf
+  COMPARE timeseries.csv:time,flagged_cells,troubled_cells NUMDIFF -a 0 -r 0)
+granular_dg_test(indicator/kxrcf_shock_flagged EXE ${TEST_PYTHON}
+  ARGS ${CMAKE_CURRENT_SOURCE_DIR}/indicator/shock_cells.py $<TARGET_FILE:granular_dg>
+       ${CMAKE_CURRENT_SOURCE_DIR}/../prm/elasticity_shock.prm --indicator kxrcf --max-flagged 30
+  COMPARE stdout KEEP_OUTPUT NUMDIFF -a 0 -r 0)

@@ -30,7 +30,8 @@ namespace granular_dg::dg
   enum class TroubleIndicator
   {
     everywhere,
-    modal_energy
+    modal_energy,
+    kxrcf
   };
 
   /// The threshold of the modal-energy indicator for degree p (Hennemann,
@@ -106,6 +107,21 @@ namespace granular_dg::dg
    * mean counts in the sum: a sine crossing zero is not flagged for its
    * small mean (Trixi's second ratio, e_{p-1} / sum_{k<p} e_k, would be,
    * for variables that change sign).
+   *
+   * With the kxrcf indicator (Krivodonova, Xin, Remacle, Chevaugeon &
+   * Flaherty 2004) a cell is flagged when the jumps of its indicator
+   * variable across its faces are large for a smooth solution:
+   *   I = sum_f |[q]_f| |f| / (h^((p+1)/2) |dK| max(|q|_K, floor)) > T,
+   * [q]_f the jump of the face mean of q between the cell and its
+   * neighbour, h half the cell's diagonal, |q|_K the largest of |mean| and
+   * |face means|, T = 1 by default. KXRCF sum over the inflow faces, where
+   * the jump of a smooth solution is O(h^(p+1)) against O(1) at a shock; the
+   * systems here carry waves both ways, so every face is an inflow face of
+   * some family and all faces are summed. The jumps are those of the
+   * indicator component of the physics' limiting variables if it has them
+   * (the stress of the layered strip, continuous across material interfaces
+   * where the strain jumps), else of the indicator variable. The flags are
+   * computed from the unlimited state before any cell is limited.
    */
   template <int dim, typename Physics>
   class ModalLimiter
@@ -133,7 +149,7 @@ namespace granular_dg::dg
     apply(VectorType &solution, double t = 0., const ActiveCells *active = nullptr) const;
 
     /// Examine only the cells the indicator flags (threshold 0: the
-    /// automatic modal_energy_threshold() of the degree).
+    /// automatic modal_energy_threshold() of the degree, 1 for kxrcf).
     void
     set_indicator(TroubleIndicator indicator, double threshold = 0.);
 
@@ -207,10 +223,22 @@ namespace granular_dg::dg
     unsigned int
     apply_impl(VectorType &u, double t, const ActiveCells *active) const;
 
-    /// Whether the indicator flags the cell with modes x.
+    /// Whether the modal-energy indicator flags the cell with modes x.
     template <unsigned int n1>
     bool
     indicated(const double *x) const;
+
+    /// Whether the KXRCF indicator flags owned cell i (from the unlimited
+    /// modes of the cell and its neighbours).
+    template <unsigned int n1>
+    bool
+    kxrcf_indicated(unsigned int i) const;
+
+    /// The variable whose jumps KXRCF measures, of state U in cell: the
+    /// indicator component of the physics' limiting variables if it has
+    /// them (continuous across material interfaces), else of U.
+    double
+    jump_variable(const State &U, unsigned int cell) const;
 
     /// Limit the modes x of owned cell i; true if it was troubled.
     template <unsigned int n1>
@@ -259,6 +287,8 @@ namespace granular_dg::dg
     mutable double   indicator_floor = 0.;
 
     mutable std::vector<unsigned char> troubled;
+    /// kxrcf: the flags of the current apply(), per owned cell
+    mutable std::vector<unsigned char> kxrcf_flags;
     mutable unsigned int               flagged = 0;
     /// the (ghosted) solution of the current apply(), for the averages
     mutable const double *averages = nullptr;

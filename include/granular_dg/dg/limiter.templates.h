@@ -291,7 +291,9 @@ namespace granular_dg::dg
   {
     static_assert(Physics::indicator_component < Physics::n_components);
     indicator           = ind;
-    indicator_threshold = threshold > 0 ? threshold : modal_energy_threshold(cells.degree());
+    indicator_threshold = threshold > 0                        ? threshold :
+                          ind == TroubleIndicator::kxrcf ? 1. :
+                                                             modal_energy_threshold(cells.degree());
   }
 
   template <int dim, typename Physics>
@@ -316,11 +318,64 @@ namespace granular_dg::dg
   }
 
   template <int dim, typename Physics>
+  double
+  ModalLimiter<dim, Physics>::jump_variable(const State &U, const unsigned int cell) const
+  {
+    if constexpr (internal::has_limiting_variables<Physics>::value)
+      return physics.limiting_variables(U, coefficients[cell])[Physics::indicator_component];
+    else
+      return U[Physics::indicator_component];
+  }
+
+  template <int dim, typename Physics>
+  template <unsigned int n1>
+  bool
+  ModalLimiter<dim, Physics>::kxrcf_indicated(const unsigned int i) const
+  {
+    constexpr unsigned int n_modes = dim == 1 ? n1 : n1 * n1;
+    constexpr unsigned int p       = n1 - 1;
+    // the face mean of the jump variable on face f of cell c (f = 2d:
+    // coordinate d at 0, 2d + 1: at 1): only the modes constant across the
+    // face contribute
+    const auto face_value = [&](const unsigned int c, const unsigned int f) {
+      const unsigned int d = f / 2, stride = d == 0 ? 1 : n1;
+      State              U;
+      for (unsigned int comp = 0; comp < n_components; ++comp)
+        for (unsigned int k = 0; k < n1; ++k)
+          U[comp] += averages[base[c] + comp * n_modes + k * stride] * (f % 2 == 0 ? at_0[k] : at_1[k]);
+      return jump_variable(U, c);
+    };
+    double size = std::abs(jump_variable(average(i), i)), jumps = 0, boundary = 0, h2 = 0;
+    for (unsigned int d = 0; d < dim; ++d)
+      h2 += cells.extent(i, d) * cells.extent(i, d);
+    for (unsigned int f = 0; f < 2 * dim; ++f)
+      {
+        const double own = face_value(i, f);
+        size             = std::max(size, std::abs(own));
+        const Face &face = faces[i * 2 * dim + f];
+        if (face.neighbor < 0)
+          continue;
+        // the face's measure: the product of the extents across it
+        double measure = 1;
+        for (unsigned int e = 0; e < dim; ++e)
+          if (e != f / 2)
+            measure *= cells.extent(i, e);
+        jumps += std::abs(own - face_value(face.neighbor, f ^ 1u)) * measure;
+        boundary += measure;
+      }
+    if (!(size > indicator_floor) || boundary == 0)
+      return false;
+    const double h = 0.5 * std::sqrt(h2);
+    return jumps / (std::pow(h, 0.5 * (p + 1)) * boundary * size) > indicator_threshold;
+  }
+
+  template <int dim, typename Physics>
   template <unsigned int n1>
   bool
   ModalLimiter<dim, Physics>::limit_cell(const unsigned int i, double *x) const
   {
-    if (indicator == TroubleIndicator::modal_energy && !indicated<n1>(x))
+    if ((indicator == TroubleIndicator::modal_energy && !indicated<n1>(x)) ||
+        (indicator == TroubleIndicator::kxrcf && !kxrcf_flags[i]))
       return false;
     ++flagged;
     constexpr unsigned int nc      = n_components;
@@ -385,13 +440,25 @@ namespace granular_dg::dg
         }
     double *u_data = u.begin();
     flagged        = 0;
-    if (indicator == TroubleIndicator::modal_energy)
+    if (indicator != TroubleIndicator::everywhere)
       {
         // the scale of the indicator variable: its largest cell mean
         double scale = 0;
         for (unsigned int i = 0; i < cells.n_owned(); ++i)
-          scale = std::max(scale, std::abs(average(i)[Physics::indicator_component]));
+          scale = std::max(scale, std::abs(indicator == TroubleIndicator::kxrcf ?
+                                             jump_variable(average(i), i) :
+                                             average(i)[Physics::indicator_component]));
         indicator_floor = 1e-10 * Utilities::MPI::max(scale, u.get_mpi_communicator());
+      }
+    if (indicator == TroubleIndicator::kxrcf)
+      {
+        // all flags from the unlimited state: limiting a cell changes the
+        // traces its neighbours see
+        kxrcf_flags.resize(cells.n_owned());
+        for_active_ranges(active, cells.n_owned(), [&](const unsigned int first, const unsigned int end) {
+          for (unsigned int i = first; i < end; ++i)
+            kxrcf_flags[i] = kxrcf_indicated<n1>(i);
+        });
       }
     const auto limit_range = [&](const unsigned int first, const unsigned int end) {
       for (unsigned int i = first; i < end; ++i)
