@@ -20,7 +20,7 @@ namespace granular_dg
 
   namespace
   {
-    const char *const magic = "granular_dg checkpoint 2";
+    const char *const magic = "granular_dg checkpoint 3";
 
     volatile std::sig_atomic_t received_signal = 0;
 
@@ -115,8 +115,11 @@ namespace granular_dg
         throw RunError("cannot be read");
       std::string line;
       if (!std::getline(in, line) || line != magic)
-        throw RunError("not a granular_dg checkpoint (first line '" + line.substr(0, 40) +
-                       "')");
+        throw RunError(line.rfind("granular_dg checkpoint ", 0) == 0 ?
+                         "written by another version of granular_dg ('" + line.substr(0, 40) +
+                           "'; this build reads '" + magic + "'): rerun without --resume" :
+                         "not a granular_dg checkpoint (first line '" + line.substr(0, 40) +
+                           "')");
       ParsedFile f;
       while (std::getline(in, line))
         {

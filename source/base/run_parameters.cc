@@ -49,7 +49,13 @@ namespace granular_dg
                         "Snapshot every this much time when no output times are "
                         "given (0: only the initial and final state).");
       prm.declare_entry("write vtu", "true", Patterns::Bool(),
-                        "Write solution-NNNN.vtu snapshots and solution.pvd.");
+                        "Write field snapshots (in Output/format) and their index; "
+                        "false: CSV/JSON output only.");
+      prm.declare_entry("format", "vtu", Patterns::Selection("vtu|hdf5"),
+                        "Snapshot format: vtu (solution-NNNN.vtu, one .vtu per rank and a "
+                        ".pvtu under MPI, indexed by solution.pvd) or hdf5 (2D only: "
+                        "solution-NNNN.h5 written by all ranks into one file through "
+                        "parallel HDF5, indexed by solution.xdmf; doc/program.md).");
       prm.declare_entry("progress interval", "5", Patterns::Double(0),
                         "Seconds of wall time between progress lines (0: none).");
       prm.leave_subsection();
@@ -192,6 +198,7 @@ namespace granular_dg
     output_times      = parse_doubles(output_times_text, "Output/output times");
     output_interval   = prm.get_double("output interval");
     write_vtu         = prm.get_bool("write vtu");
+    hdf5              = prm.get("format") == "hdf5";
     progress_interval = prm.get_double("progress interval");
     prm.leave_subsection();
     for (const double t : output_times)
@@ -381,5 +388,13 @@ namespace granular_dg
       require(false, "Checkpoint/resume", "true",
               "the run in '" + dir + "' completed (final time " + std::string(match[1]) +
                 "); nothing to resume (raise Time stepping/final time to continue it)");
+  }
+
+  void
+  RunParameters::require_format_fits(const unsigned int dim) const
+  {
+    require(dim > 1 || !hdf5, "Output/format", "hdf5",
+            "vtu in 1D (deal.II writes HDF5/XDMF for dim >= 2 only; 1D runs also write CSV "
+            "profiles)");
   }
 } // namespace granular_dg

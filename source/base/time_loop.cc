@@ -71,6 +71,7 @@ namespace granular_dg
     ar.io(last_record_time);
     ar.io(last_main_file);
     ar.io(snapshots);
+    ar.io(xdmf_grids);
     ar.io(timeseries_size);
   }
 
@@ -133,7 +134,8 @@ namespace granular_dg
       write_files ? params.output_schedule(t) : std::vector<double>{params.final_time};
     if (write_files && root)
       std::cout << "  " << info.description << "; output to " << params.directory << "/ ("
-                << info.snapshot_files << ", timeseries.csv, summary.json)" << std::endl;
+                << info.snapshot_files << (info.snapshot_files.empty() ? "" : ", ")
+                << "timeseries.csv, summary.json)" << std::endl;
     if (write_files && result.resumed_from_step == 0)
       open_timeseries();
     // (only now: a TimerOutput destroyed by an exception of the checks
@@ -263,6 +265,12 @@ namespace granular_dg
         snapshots.emplace_back(t, files.pvd_entry);
         if (root)
           write_pvd(params.directory + "/solution.pvd", snapshots);
+      }
+    if (!files.xdmf_entry.empty())
+      {
+        xdmf_grids.push_back(files.xdmf_entry);
+        if (root)
+          write_xdmf(params.directory + "/solution.xdmf", xdmf_grids);
       }
     std::vector<double> row{t, double(step), dt};
     for (const double v : problem.timeseries_values(t))

@@ -1,5 +1,5 @@
-"""Opens a granular_dg solution.pvd (absolute path) with ParaView's own
-reader, as the GUI does, and prints what a user would see: the number of
+"""Opens a granular_dg solution.pvd or solution.xdmf (absolute path) with
+ParaView's own reader, as the GUI does, and prints what a user would see: the number of
 time steps, their times, the point-array names and, per step, whether any
 value is NaN/Inf and how many points it has. Run by run_test.py under
 `pvpython --no-mpi`; the output is compared with a hand-written file.
@@ -9,7 +9,7 @@ import math
 import sys
 
 from paraview import servermanager
-from paraview.simple import OpenDataFile, UpdatePipeline
+from paraview.simple import OpenDataFile
 
 path = sys.argv[1]
 reader = OpenDataFile(path)
@@ -20,7 +20,9 @@ print('time_steps %d' % len(times))
 print('times ' + ' '.join('%g' % t for t in times))
 names = None
 for t in times:
-    UpdatePipeline(time=t, proxy=reader)
+    # the proxy's own UpdatePipeline(t): paraview.simple's UpdatePipeline(time=0)
+    # takes 0 for "no time" and returns whatever step the reader holds
+    reader.UpdatePipeline(t)
     data = servermanager.Fetch(reader)
     # a .pvd gives a multiblock or a single data set depending on version
     if data.IsA('vtkMultiBlockDataSet'):

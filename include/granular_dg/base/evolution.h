@@ -73,10 +73,12 @@ namespace granular_dg
   };
 
   /// What a snapshot wrote: the file solution.pvd lists (VTU/PVTU, "" if
-  /// none) and the file a message names (that one, or a CSV profile).
+  /// none), the snapshot's <Grid> element for solution.xdmf (HDF5 output,
+  /// the same on every rank; "" if none) and the file a message names (the
+  /// VTU/HDF5 file, or a CSV profile).
   struct SnapshotFiles
   {
-    std::string pvd_entry, main_file;
+    std::string pvd_entry, xdmf_entry, main_file;
   };
 
   /**

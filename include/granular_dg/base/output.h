@@ -103,6 +103,11 @@ namespace granular_dg
   write_pvd(const std::string &filename,
             const std::vector<std::pair<double, std::string>> &records);
 
+  /// The XDMF index of HDF5 snapshots: solution.xdmf, a temporal collection
+  /// of the snapshots' <Grid> elements (DataOutBase::XDMFEntry's content).
+  void
+  write_xdmf(const std::string &filename, const std::vector<std::string> &grids);
+
   /// Progress with percentage and ETA, at most every interval seconds
   /// (interval 0: silent).
   class Progress

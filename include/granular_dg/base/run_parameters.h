@@ -38,6 +38,13 @@ namespace granular_dg
     std::vector<double> output_times;
     double              output_interval   = 0.;
     bool                write_vtu         = true;
+    /// the snapshots' format (Output/format): VTU (+ solution.pvd) or, in
+    /// 2D, HDF5 written by all ranks into one file (+ solution.xdmf)
+    bool                hdf5              = false;
+    /// Refuse Output/format = hdf5 for a scene of dimension dim < 2 (exit 2,
+    /// before anything is written).
+    void
+    require_format_fits(unsigned int dim) const;
     double              progress_interval = 5.;
 
     bool                      convergence = false;

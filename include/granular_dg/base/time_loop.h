@@ -99,6 +99,8 @@ namespace granular_dg
     unsigned int        next_output = 0;
     /// (time, file) of every snapshot: solution.pvd
     std::vector<std::pair<double, std::string>> snapshots;
+    /// the <Grid> elements of solution.xdmf (HDF5 output)
+    std::vector<std::string> xdmf_grids;
     unsigned int  n_snapshots = 0;
     double        last_record_time = -1;
     std::string   last_main_file;

@@ -3,6 +3,7 @@
 #include <deal.II/dofs/dof_handler.h>
 #include <deal.II/fe/fe_system.h>
 #include <deal.II/fe/mapping_q1.h>
+#include <deal.II/numerics/data_out.h>
 
 #include <granular_dg/base/evolution.h>
 #include <granular_dg/base/run_parameters.h>
@@ -93,8 +94,16 @@ namespace granular_dg::dg
     errors(double t) const;
     double
     energy() const;
+    /// The fields of a snapshot: components, derived quantities and, with a
+    /// limiter, the cell field `troubled` (troubled_field holds its values).
+    void
+    fill_data_out(DataOut<dim> &data_out, Vector<float> &troubled_field) const;
     std::string
     write_vtu(const std::string &directory, unsigned int index, double t) const;
+    /// solution-NNNN.h5 by all ranks (parallel HDF5); returns its <Grid>
+    /// element for solution.xdmf, the same on every rank.
+    std::string
+    write_hdf5(const std::string &directory, const std::string &name, double t) const;
     std::string
     write_profile(const std::string &directory, unsigned int index, double t) const;
     void
@@ -103,6 +112,7 @@ namespace granular_dg::dg
     SceneData<dim, Physics>          scene;
     const DiscretizationParameters   method;
     const bool                       write_vtu_files;
+    const bool                       hdf5_files;
     const std::string                directory;
     FESystem<dim>                    fe;
     DoFHandler<dim>                  dof_handler;

@@ -107,6 +107,7 @@ namespace granular_dg::dg
     : scene(scene_data)
     , method(method)
     , write_vtu_files(run.write_vtu)
+    , hdf5_files(run.hdf5)
     , directory(run.directory)
     , fe(FE_DGQLegendre<dim>(method.degree), Physics::n_components)
     , dof_handler(*scene_data.triangulation)
@@ -114,6 +115,7 @@ namespace granular_dg::dg
     , limiter(scene_data.physics, method.limiter, method.tvb_M, scene_data.boundary)
     , hooks(scene_data.hooks)
   {
+    run.require_format_fits(dim);
     dof_handler.distribute_dofs(fe);
     op->reinit(mapping, dof_handler);
     op->initialize_vector(solution);
@@ -193,7 +195,10 @@ namespace granular_dg::dg
     i.h_min     = GridTools::minimal_cell_diameter(*scene.triangulation);
     i.n_stages  = low_storage ? low_storage->n_stages() : SSPRK3<>::n_stages;
     i.time_name = scene.time_name;
-    i.snapshot_files = dim == 1 ? "solution.pvd, profile-NNNN.csv" : "solution.pvd";
+    i.snapshot_files = !write_vtu_files ? "" : hdf5_files ? "solution.xdmf, solution-NNNN.h5" :
+                                                            "solution.pvd";
+    if (dim == 1)
+      i.snapshot_files += std::string(i.snapshot_files.empty() ? "" : ", ") + "profile-NNNN.csv";
     i.description    = std::to_string(i.n_cells) + " cells, " + std::to_string(i.n_dofs) +
                     " DoFs, degree " + std::to_string(method.degree) + ", " + Physics::name;
     i.method.add("engine", op->engine_name());
@@ -490,7 +495,12 @@ namespace granular_dg::dg
   {
     solution.update_ghost_values();
     SnapshotFiles files;
-    if (write_vtu_files)
+    if (write_vtu_files && hdf5_files)
+      {
+        files.main_file  = internal::snapshot_name("solution-", index, ".h5");
+        files.xdmf_entry = write_hdf5(dir, files.main_file, t);
+      }
+    else if (write_vtu_files)
       files.pvd_entry = files.main_file = write_vtu(dir, index, t);
     if constexpr (dim == 1)
       {
@@ -502,6 +512,51 @@ namespace granular_dg::dg
       }
     solution.zero_out_ghost_values();
     return files;
+  }
+
+  template <int dim, typename Physics>
+  void
+  Solver<dim, Physics>::fill_data_out(DataOut<dim> &data_out, Vector<float> &troubled_field) const
+  {
+    data_out.attach_dof_handler(dof_handler);
+    const internal::DerivedFields<dim, Physics> derived(scene.physics);
+    data_out.add_data_vector(solution, Physics::component_names());
+    data_out.add_data_vector(solution, derived);
+    // the cells the limiter modified in the last stage
+    if (limiter.get_type() != LimiterType::none)
+      {
+        troubled_field.reinit(dof_handler.get_triangulation().n_active_cells());
+        unsigned int k = 0;
+        for (const auto &cell : dof_handler.active_cell_iterators())
+          if (cell->is_locally_owned())
+            troubled_field[cell->active_cell_index()] = limiter.troubled_cells()[k++];
+        data_out.add_data_vector(troubled_field, "troubled", DataOut<dim>::type_cell_data);
+      }
+    data_out.build_patches(mapping, std::max(1u, method.degree));
+  }
+
+  template <int dim, typename Physics>
+  std::string
+  Solver<dim, Physics>::write_hdf5(const std::string &directory, const std::string &name,
+                                   const double t) const
+  {
+    const MPI_Comm comm = solution.get_mpi_communicator();
+    DataOut<dim>   data_out;
+    Vector<float>  troubled_field;
+    fill_data_out(data_out, troubled_field);
+    // DG fields: vertices of neighbouring cells are not merged (the jumps
+    // stay); the values are written as doubles
+    DataOutBase::DataOutFilter filter(DataOutBase::DataOutFilterFlags(false, true));
+    data_out.write_filtered_data(filter);
+    data_out.write_hdf5_parallel(filter, directory + "/" + name, comm);
+    const auto  entry = data_out.create_xdmf_entry(filter, name, t, comm);
+    std::string grid;
+    if (Utilities::MPI::this_mpi_process(comm) == 0)
+      {
+        grid = entry.get_xdmf_content(3);
+        record_output_file(directory, name);
+      }
+    return Utilities::MPI::broadcast(comm, grid, 0);
   }
 
   template <int dim, typename Physics>
@@ -518,22 +573,8 @@ namespace granular_dg::dg
     // linear patches there, Lagrange cells in 2D
     flags.write_higher_order_cells = (dim > 1);
     data_out.set_flags(flags);
-    data_out.attach_dof_handler(dof_handler);
-    const internal::DerivedFields<dim, Physics> derived(scene.physics);
-    data_out.add_data_vector(solution, Physics::component_names());
-    data_out.add_data_vector(solution, derived);
-    // the cells the limiter modified in the last stage
     Vector<float> troubled_field;
-    if (limiter.get_type() != LimiterType::none)
-      {
-        troubled_field.reinit(dof_handler.get_triangulation().n_active_cells());
-        unsigned int k = 0;
-        for (const auto &cell : dof_handler.active_cell_iterators())
-          if (cell->is_locally_owned())
-            troubled_field[cell->active_cell_index()] = limiter.troubled_cells()[k++];
-        data_out.add_data_vector(troubled_field, "troubled", DataOut<dim>::type_cell_data);
-      }
-    data_out.build_patches(mapping, std::max(1u, method.degree));
+    fill_data_out(data_out, troubled_field);
 
     const unsigned int n_ranks = Utilities::MPI::n_mpi_processes(comm);
     const unsigned int rank    = Utilities::MPI::this_mpi_process(comm);

@@ -76,6 +76,7 @@ namespace granular_dg::column
                           const dg::DiscretizationParameters &)
   {
     const double final_time = run.final_time;
+    run.require_format_fits(1);
     ColumnParameters &p = *this;
     prm.enter_subsection("Physics");
     p.physics.m         = prm.get_double("stress exponent m");

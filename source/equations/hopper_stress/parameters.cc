@@ -82,6 +82,7 @@ namespace granular_dg::hopper
                     const dg::DiscretizationParameters &)
   {
     Parameters &p = *this;
+    run.require_format_fits(1);
     prm.enter_subsection("Hopper");
     p.mode     = mode_names.parse("Hopper/mode", prm.get("mode"));
     p.geometry = geometry_names.parse("Hopper/geometry", prm.get("geometry"));

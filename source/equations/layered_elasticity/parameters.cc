@@ -224,6 +224,7 @@ namespace granular_dg::elasticity
     final_time = run.final_time;
     prm.enter_subsection("Mesh");
     dim = prm.get_integer("dimension");
+    run.require_format_fits(dim);
     lo  = Point<2>(prm.get_double("x min"), prm.get_double("y min"));
     hi  = Point<2>(prm.get_double("x max"), prm.get_double("y max"));
     cells = {{static_cast<unsigned int>(prm.get_integer("cells x")),

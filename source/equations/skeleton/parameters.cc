@@ -27,11 +27,12 @@ namespace granular_dg::skeleton
   }
 
   void
-  SkeletonParameters::parse(ParameterHandler &prm, const RunParameters &,
+  SkeletonParameters::parse(ParameterHandler &prm, const RunParameters &run,
                             const dg::DiscretizationParameters &)
   {
     prm.enter_subsection("Mesh");
     dim      = prm.get_integer("dimension");
+    run.require_format_fits(dim);
     cells    = prm.get_integer("cells");
     periodic = prm.get_bool("periodic");
     prm.leave_subsection();
