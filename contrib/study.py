@@ -180,6 +180,10 @@ def flux_limiter(flux, limiter):
     return ["Discretization/numerical flux=" + flux, "Limiter/scheme=" + limiter]
 
 
+# the limiter only in the cells the modal-energy indicator flags (issue 21)
+FLAGGED = ["Limiter/indicator=modal_energy"]
+
+
 # Stability maps. choices: (label, --set overrides); quick_choices: indices
 # used with --quick; p0_choices: the choices run at degree 0 (default all;
 # degree 0 has no slopes to limit, so choices that differ only in the
@@ -209,7 +213,9 @@ STABILITY = {
                  ("LLF + componentwise", flux_limiter("local_lax_friedrichs", "componentwise")),
                  ("LLF + characteristic", flux_limiter("local_lax_friedrichs", "characteristic")),
                  ("impedance, no limiter", flux_limiter("impedance", "none")),
-                 ("impedance + flux_variables", flux_limiter("impedance", "flux_variables"))],
+                 ("impedance + flux_variables", flux_limiter("impedance", "flux_variables")),
+                 ("impedance + flux_variables, flagged cells",
+                  flux_limiter("impedance", "flux_variables") + FLAGGED)],
         quick_choices=[1, 3]),
     # the column m = 1 (friction projection) against the closed form
     "column": dict(
@@ -219,7 +225,8 @@ STABILITY = {
         degrees=[0, 1, 2, 3], quick_degrees=[1],
         choices=[("characteristic", ["Limiter/scheme=characteristic"]),
                  ("componentwise", ["Limiter/scheme=componentwise"]),
-                 ("no limiter", ["Limiter/scheme=none"])],
+                 ("no limiter", ["Limiter/scheme=none"]),
+                 ("characteristic, flagged cells", ["Limiter/scheme=characteristic"] + FLAGGED)],
         quick_choices=[0, 1]),
     # Burgers on the star graph with a shock through the vertex (exact solution)
     "network": dict(
@@ -230,7 +237,9 @@ STABILITY = {
         degrees=[0, 1, 2, 3], quick_degrees=[1],
         choices=[("upwind (Godunov) + componentwise", flux_limiter("upwind", "componentwise")),
                  ("LLF + componentwise", flux_limiter("local_lax_friedrichs", "componentwise")),
-                 ("upwind (Godunov), no limiter", flux_limiter("upwind", "none"))],
+                 ("upwind (Godunov), no limiter", flux_limiter("upwind", "none")),
+                 ("upwind (Godunov) + componentwise, flagged cells",
+                  flux_limiter("upwind", "componentwise") + FLAGGED)],
         p0_choices=[0, 1], quick_choices=[0, 1]),
     # the 30 deg cone's radial field marched to tau = 1 (exact)
     "hopper": dict(
@@ -240,7 +249,9 @@ STABILITY = {
         degrees=[1, 2, 3], quick_degrees=[1],
         choices=[("Roe-LF + characteristic (GM)", flux_limiter("roe_lax_friedrichs", "characteristic")),
                  ("Roe-LF, no limiter", flux_limiter("roe_lax_friedrichs", "none")),
-                 ("LLF + characteristic", flux_limiter("local_lax_friedrichs", "characteristic"))],
+                 ("LLF + characteristic", flux_limiter("local_lax_friedrichs", "characteristic")),
+                 ("Roe-LF + characteristic, flagged cells",
+                  flux_limiter("roe_lax_friedrichs", "characteristic") + FLAGGED)],
         quick_choices=[]),
 }
 DEFAULT_FACTORS = [0.5, 1.0, 1.5, 2.0, 3.0]
