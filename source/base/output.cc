@@ -35,6 +35,20 @@ namespace granular_dg
 
   namespace
   {
+    /// Write content to filename through a temporary file and a rename (a
+    /// reader never sees half a file) and note it in the run's manifest.
+    void
+    write_file_atomically(const std::string &filename, const std::string &content)
+    {
+      const std::string tmp = filename + ".tmp";
+      {
+        std::ofstream out(tmp);
+        out << content;
+      }
+      fs::rename(tmp, filename);
+      record_output_file(filename);
+    }
+
     std::string
     quoted(const std::string &s)
     {
@@ -117,13 +131,7 @@ namespace granular_dg
   void
   JsonObject::write(const std::string &filename) const
   {
-    const std::string tmp = filename + ".tmp";
-    {
-      std::ofstream out(tmp);
-      out << str() << '\n';
-    }
-    fs::rename(tmp, filename);
-    record_output_file(filename);
+    write_file_atomically(filename, str() + '\n');
   }
 
   void
@@ -357,19 +365,15 @@ namespace granular_dg
   write_pvd(const std::string                                  &filename,
             const std::vector<std::pair<double, std::string>> &records)
   {
-    const std::string tmp = filename + ".tmp";
-    {
-      std::ofstream out(tmp);
-      out << "<?xml version=\"1.0\"?>\n"
-          << "<VTKFile type=\"Collection\" version=\"0.1\" byte_order=\"LittleEndian\">\n"
-          << "  <Collection>\n";
-      for (const auto &r : records)
-        out << "    <DataSet timestep=\"" << format_number(r.first)
-            << "\" group=\"\" part=\"0\" file=\"" << r.second << "\"/>\n";
-      out << "  </Collection>\n</VTKFile>\n";
-    }
-    fs::rename(tmp, filename);
-    record_output_file(filename);
+    std::ostringstream out;
+    out << "<?xml version=\"1.0\"?>\n"
+        << "<VTKFile type=\"Collection\" version=\"0.1\" byte_order=\"LittleEndian\">\n"
+        << "  <Collection>\n";
+    for (const auto &r : records)
+      out << "    <DataSet timestep=\"" << format_number(r.first)
+          << "\" group=\"\" part=\"0\" file=\"" << r.second << "\"/>\n";
+    out << "  </Collection>\n</VTKFile>\n";
+    write_file_atomically(filename, out.str());
   }
 
   void
@@ -377,20 +381,14 @@ namespace granular_dg
   {
     // the frame of DataOutBase's write_xdmf_file(), written from the
     // entries the loop keeps (also across a resume)
-    const std::string tmp = filename + ".tmp";
-    {
-      std::ofstream out(tmp);
-      out << "<?xml version=\"1.0\" ?>\n"
-          << "<!DOCTYPE Xdmf SYSTEM \"Xdmf.dtd\" []>\n"
-          << "<Xdmf Version=\"2.0\">\n"
-          << "  <Domain>\n"
-          << "    <Grid Name=\"CellTime\" GridType=\"Collection\" CollectionType=\"Temporal\">\n";
-      for (const auto &g : grids)
-        out << g;
-      out << "    </Grid>\n  </Domain>\n</Xdmf>\n";
-    }
-    fs::rename(tmp, filename);
-    record_output_file(filename);
+    std::string out = "<?xml version=\"1.0\" ?>\n"
+                      "<!DOCTYPE Xdmf SYSTEM \"Xdmf.dtd\" []>\n"
+                      "<Xdmf Version=\"2.0\">\n"
+                      "  <Domain>\n"
+                      "    <Grid Name=\"CellTime\" GridType=\"Collection\" CollectionType=\"Temporal\">\n";
+    for (const auto &g : grids)
+      out += g;
+    write_file_atomically(filename, out + "    </Grid>\n  </Domain>\n</Xdmf>\n");
   }
 
   std::string

@@ -263,8 +263,7 @@ namespace granular_dg::network
       c.disc.indicator_threshold = method.indicator_threshold;
       c.disc.profile_points = method.profile_points;
       c.disc.write_vtu      = common.write_vtu;
-      require(!common.hdf5, "Output/format", "hdf5",
-              "vtu for the network (its edges are 1D; HDF5/XDMF is for 2D meshes)");
+      common.require_format_fits(1);  // the edges are 1D
 
       prm.enter_subsection("Time stepping");
       c.disc.integrator =
