@@ -1,6 +1,7 @@
 #include <deal.II/base/exceptions.h>
 #include <deal.II/lac/vector.h>
 
+#include <granular_dg/base/input_path.h>
 #include <granular_dg/base/parameters.h>
 
 #include <filesystem>
@@ -235,6 +236,7 @@ namespace granular_dg
                    const std::vector<std::string> &overrides)
   {
     require_readable_parameter_file(filename);
+    set_parameter_file(filename);
     try
       {
         // undeclared entries are errors: a typo must never be ignored

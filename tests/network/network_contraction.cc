@@ -37,11 +37,13 @@ namespace
   compare(const double width_factor)
   {
     Graph g;
+    g.vertices.resize(1);
+    g.vertices[0].width_factor = width_factor;
     for (const Direction d :
          {Direction::in, Direction::in, Direction::out, Direction::out, Direction::out})
       {
         Edge e;
-        e.direction = d;
+        e.meet(d);
         e.flux      = {FluxLaw::burgers, 1., 1.};
         e.far_end   = FarEnd::dirichlet;
         e.label     = "Edge";
@@ -59,8 +61,10 @@ namespace
       }
     Discretisation disc;
     disc.cells_per_unit_length = 64;
-    disc.vertex_width_factor   = width_factor;
-    NetworkProblem u(g, disc, data_u, 0.8), v(g, disc, data_v, 1.0);
+    Graph gu = g, gv = g;
+    gu.vertices[0].initial_value = 0.8;
+    gv.vertices[0].initial_value = 1.0;
+    NetworkProblem u(gu, disc, data_u), v(gv, disc, data_v);
     u.initialize();
     v.initialize();
 

@@ -140,10 +140,11 @@ main()
   // discrete stationary vertex values (Definition 4.4)
   auto star = [](const std::vector<std::pair<Direction, FluxFunction>> &edges) {
     Graph g;
+    g.vertices.resize(1);
     for (const auto &[dir, f] : edges)
       {
         Edge e;
-        e.direction = dir;
+        e.meet(dir);
         e.flux      = f;
         g.edges.push_back(e);
       }
@@ -156,7 +157,7 @@ main()
     // per end: in-edge, loop in-end, loop out-end, out, out
     const Graph g = star({{Direction::in, burgers}, {Direction::loop, burgers},
                           {Direction::out, burgers}, {Direction::out, burgers}});
-    const Junction j(g, NumericalFlux::upwind, 0.);
+    const Junction j(g, 0, NumericalFlux::upwind, 0.);
     std::cout << "7.1 c_0 - 1: "
               << j.balance({std::sqrt(2.), 1., 1., 1., 1.}, 0.) - 1. << std::endl;
   }
@@ -164,7 +165,7 @@ main()
     const Graph    g = star({{Direction::in, traffic(1)}, {Direction::in, traffic(1)},
                              {Direction::out, traffic(2)}, {Direction::out, traffic(4)},
                              {Direction::out, traffic(4)}});
-    const Junction j(g, NumericalFlux::upwind, 0.);
+    const Junction j(g, 0, NumericalFlux::upwind, 0.);
     const double   c0 = j.balance({0.5, 0.5, 0., 0.2, 1.}, 0.);
     std::cout << "7.2 c_0 - (3 - sqrt 7)/2: " << c0 - (3 - std::sqrt(7.)) / 2
               << ", residual " << j.net_outflow({0.5, 0.5, 0., 0.2, 1.}, c0) << std::endl;
@@ -173,7 +174,7 @@ main()
     const Graph    g = star({{Direction::in, burgers}, {Direction::in, burgers},
                              {Direction::out, burgers}, {Direction::out, burgers},
                              {Direction::out, burgers}});
-    const Junction j(g, NumericalFlux::upwind, 0.);
+    const Junction j(g, 0, NumericalFlux::upwind, 0.);
     std::cout << "7.4 c_0 - sqrt(2/3): "
               << j.balance({1., 1., 0., 0.8, 2.}, 0.) - std::sqrt(2. / 3.) << std::endl;
   }
@@ -183,7 +184,7 @@ main()
     // the inflow of each road (f(u_0) = 1/2) and the outflow is the capacity
     const Graph g = star({{Direction::in, traffic(1)}, {Direction::in, traffic(1)},
                           {Direction::out, traffic(1)}});
-    const Junction j(g, NumericalFlux::upwind, 0.);
+    const Junction j(g, 0, NumericalFlux::upwind, 0.);
     const double   u0 = j.balance({0.5, 0.5, 0.2}, 0.);
     const auto     F  = j.end_fluxes({0.5, 0.5, 0.2}, u0);
     std::cout << "congested vertex: u_0 - (1 + sqrt(1/2))/2 = "
@@ -193,7 +194,7 @@ main()
   {
     // an ingoing edge and no outgoing one: nothing balances a positive flux
     const Graph    g = star({{Direction::in, FluxFunction{FluxLaw::linear, 1., 1.}}});
-    const Junction j(g, NumericalFlux::upwind, 0.);
+    const Junction j(g, 0, NumericalFlux::upwind, 0.);
     try
       {
         j.balance({1.}, 0.25);

@@ -34,17 +34,24 @@ namespace granular_dg::network
     public:
       using Value  = std::function<double(unsigned int, double, double)>;
       using Breaks = std::function<std::vector<double>(unsigned int, double)>;
-      Solution(std::string name, Value value, Breaks breaks,
-               std::function<double(double)> vertex, const double until = 1e300)
+      using Vertex = std::function<double(double)>;
+      /// a star: one vertex
+      Solution(std::string name, Value value, Breaks breaks, Vertex vertex,
+               const double until = 1e300)
+        : Solution(std::move(name), std::move(value), std::move(breaks),
+                   std::vector<Vertex>{std::move(vertex)}, until)
+      {}
+      Solution(std::string name, Value value, Breaks breaks, std::vector<Vertex> vertices,
+               const double until = 1e300)
         : label(std::move(name))
         , u(std::move(value))
         , b(std::move(breaks))
-        , v(std::move(vertex))
+        , v(std::move(vertices))
         , until(until)
       {}
       double value(unsigned int k, double x, double t) const override { return u(k, x, t); }
       std::vector<double> breakpoints(unsigned int k, double t) const override { return b(k, t); }
-      double vertex_value(double t) const override { return v(t); }
+      double vertex_value(unsigned int i, double t) const override { return v.at(i)(t); }
       double valid_until() const override { return until; }
       std::string name() const override { return label; }
 
@@ -52,7 +59,7 @@ namespace granular_dg::network
       std::string                   label;
       Value                         u;
       Breaks                        b;
-      std::function<double(double)> v;
+      std::vector<Vertex>           v;
       double                        until;
     };
 
@@ -263,13 +270,99 @@ namespace granular_dg::network
         c);
       return e;
     }
+
+    /// Two stars joined by an edge, Burgers: Edges 1, 2 (data 1, inflow 1)
+    /// run into Vertex 1, Edge 3 from Vertex 1 to Vertex 2 (data 1), Edges
+    /// 4, 5 out of Vertex 2 (data 1/sqrt 2). The stationary construction
+    /// (Definition 4.4) at each vertex: Vertex 1 takes c = sqrt 2 (f(c) = 1,
+    /// the two inflows), which sends a shock sqrt 2 | 1 into Edge 3 at speed
+    /// s1 = (1 + sqrt 2)/2; Vertex 2 is stationary at 1/sqrt 2 (f = 1/4 on
+    /// each out-edge) until the shock arrives at t1 = 1/s1, then takes c = 1
+    /// (2 f(c) = f(sqrt 2) = 1) and sends shocks 1 | 1/sqrt 2 at speed
+    /// s2 = (1 + 1/sqrt 2)/2 into Edges 4 and 5, which leave at t1 + 1/s2.
+    Example
+    two_stars()
+    {
+      const double s1 = (1 + sqrt2) / 2, t1 = 1 / s1, s2 = (1 + 1 / sqrt2) / 2;
+      Example      e;
+      e.name        = "two_stars";
+      e.description = "two star vertices joined by an edge, Burgers' equation, shocks "
+                      "from the stationary states at both vertices";
+      e.n_vertices  = 2;
+      e.edges       = {{free_end, 0, burgers()}, {free_end, 0, burgers()}, {0, 1, burgers()},
+                       {1, free_end, burgers()}, {1, free_end, burgers()}};
+      const auto shock2 = [=](double t) { return s2 * (t - t1); };
+      e.exact           = std::make_shared<Solution>(
+        e.name,
+        [=](unsigned int k, double x, double t) {
+          if (k < 2)
+            return 1.;
+          if (k == 2)
+            return x < s1 * t ? sqrt2 : 1.;
+          return t > t1 && x < shock2(t) ? 1. : 1 / sqrt2;
+        },
+        [=](unsigned int k, double t) {
+          if (k == 2 && t < t1)
+            return std::vector<double>{s1 * t};
+          if (k > 2 && t > t1)
+            return std::vector<double>{shock2(t)};
+          return std::vector<double>{};
+        },
+        std::vector<Solution::Vertex>{[=](double) { return sqrt2; },
+                                      [=](double t) { return t < t1 ? 1 / sqrt2 : 1.; }},
+        t1 + 1 / s2);
+      return e;
+    }
+
+    /// A smooth solution through two vertices, linear advection: Edge 1
+    /// (speed 1, u = 1 + sin(2 pi (x - t))/2) into Vertex 1, Edges 2 (to
+    /// Vertex 2, speed 1) and 3 (free, speed 2) out of it; Edge 5 (speed 1,
+    /// u = 1 + cos(2 pi (x - t))/4) into Vertex 2 and Edge 4 (speed 1/2) out
+    /// of it. Without vertex volume the vertex states are
+    /// c1(t) = u_1(1, t)/3 = (1 - sin(2 pi t)/2)/3 and
+    /// c2(t) = (u_2(1, t) + u_5(1, t))/(1/2) = 2 (c1(t - 1) + 1 + cos(2 pi t)/4),
+    /// and every out-edge carries its vertex state: u = c(t - x/a).
+    Example
+    smooth_two_vertices()
+    {
+      const double pi = numbers::PI;
+      const double a[] = {1., 1., 2., 0.5, 1.};
+      const auto   c1 = [=](const double t) { return (1 - 0.5 * std::sin(2 * pi * t)) / 3; };
+      const auto   c2 = [=](const double t) {
+        return 2 * (c1(t - 1) + 1 + 0.25 * std::cos(2 * pi * t));
+      };
+      Example e;
+      e.name        = "smooth_two_vertices";
+      e.description = "smooth linear advection through two vertices (order test)";
+      e.n_vertices  = 2;
+      e.edges       = {{free_end, 0, linear(1)}, {0, 1, linear(1)}, {0, free_end, linear(2)},
+                       {1, free_end, linear(0.5)}, {free_end, 1, linear(1)}};
+      e.exact       = std::make_shared<Solution>(
+        e.name,
+        [=](unsigned int k, double x, double t) {
+          switch (k)
+            {
+              case 0:
+                return 1 + 0.5 * std::sin(2 * pi * (x - t));
+              case 4:
+                return 1 + 0.25 * std::cos(2 * pi * (x - t));
+              case 3:
+                return c2(t - x / a[k]);
+              default:
+                return c1(t - x / a[k]);
+            }
+        },
+        [](unsigned int, double) { return std::vector<double>{}; },
+        std::vector<Solution::Vertex>{c1, c2});
+      return e;
+    }
   } // namespace
 
   std::vector<std::string>
   example_names()
   {
     return {"example_7_1", "example_7_2", "example_7_3", "example_7_4", "example_7_5",
-            "smooth_linear"};
+            "smooth_linear", "two_stars", "smooth_two_vertices"};
   }
 
   Example
@@ -287,6 +380,10 @@ namespace granular_dg::network
       return example_7_5();
     if (name == "smooth_linear")
       return smooth_linear();
+    if (name == "two_stars")
+      return two_stars();
+    if (name == "smooth_two_vertices")
+      return smooth_two_vertices();
     AssertThrow(false, ExcMessage("unknown example " + name));
     return {};
   }

@@ -13,30 +13,160 @@ namespace granular_dg::network
   std::string
   direction_name(const Direction d)
   {
-    return d == Direction::in ? "in" : d == Direction::out ? "out" : "loop";
+    return d == Direction::in ? "in" : d == Direction::out ? "out" : d == Direction::loop ? "loop" : "apart";
+  }
+
+  void
+  Edge::meet(const Direction d, const unsigned int v)
+  {
+    from = (d == Direction::out || d == Direction::loop) ? v : free_end;
+    to   = (d == Direction::in || d == Direction::loop) ? v : free_end;
   }
 
   std::vector<EdgeEnd>
-  Graph::vertex_ends() const
+  Graph::vertex_ends(const unsigned int v) const
   {
     std::vector<EdgeEnd> ends;
     for (unsigned int k = 0; k < edges.size(); ++k)
       {
-        if (edges[k].direction != Direction::out)
+        if (edges[k].to == v)
           ends.push_back({k, true});
-        if (edges[k].direction != Direction::in)
+        if (edges[k].from == v)
           ends.push_back({k, false});
       }
     return ends;
   }
 
+  bool
+  Graph::is_star() const
+  {
+    return vertices.size() == 1 && std::all_of(edges.begin(), edges.end(), [](const Edge &e) {
+             return e.direction(0) != Direction::apart;
+           });
+  }
+
+  void
+  Graph::validate(const std::string &where) const
+  {
+    auto fail = [&](const std::string &what) { throw InputError(where + ": " + what); };
+    if (edges.empty())
+      fail("the network has no edges");
+    std::vector<unsigned int> degree(vertices.size(), 0);
+    for (const Edge &e : edges)
+      {
+        if (!(std::isfinite(e.length) && e.length > 0))
+          {
+            std::ostringstream s;
+            s << e.label << " has length " << e.length << ": must be finite and > 0";
+            fail(s.str());
+          }
+        for (const unsigned int v : {e.from, e.to})
+          if (v != free_end)
+            {
+              if (v >= vertices.size())
+                fail(e.label + " refers to a vertex that does not exist (" +
+                     std::to_string(v + 1) + "; the network has " +
+                     std::to_string(vertices.size()) + ")");
+              ++degree[v];
+            }
+      }
+    for (unsigned int v = 0; v < vertices.size(); ++v)
+      if (degree[v] == 0)
+        fail(vertices[v].label + " has no edges (every vertex needs at least one)");
+    const auto has_position = [](const Vertex &x) { return x.position.has_value(); };
+    const auto n_positions = std::count_if(vertices.begin(), vertices.end(), has_position);
+    if (n_positions != 0 && n_positions != long(vertices.size()))
+      fail(std::find_if_not(vertices.begin(), vertices.end(), has_position)->label +
+           " has no position: give every vertex a position, or none");
+  }
+
+  std::string
+  Graph::describe(const unsigned int k) const
+  {
+    if (is_star())
+      return direction_name(edges[k].direction(0));
+    auto name = [&](const unsigned int v) {
+      return v == free_end ? std::string("free end") : vertices[v].label;
+    };
+    return name(edges[k].from) + " -> " + name(edges[k].to);
+  }
+
+  Point<2>
+  Graph::position(const unsigned int v) const
+  {
+    if (vertices[v].position)
+      return *vertices[v].position;
+    if (vertices.size() == 1)
+      return Point<2>();
+    // on a circle whose circumference is the mean edge length per vertex
+    double total = 0;
+    for (const Edge &e : edges)
+      total += e.length;
+    const double r   = total / edges.size() * vertices.size() / (2 * numbers::PI);
+    const double phi = 2 * numbers::PI * v / vertices.size();
+    return Point<2>(r * std::cos(phi), r * std::sin(phi));
+  }
+
   Point<3>
   Graph::embed(const unsigned int k, const double x) const
   {
+    if (is_star())
+      return embed_star(k, x);
+    const Edge  &e = edges[k];
+    const double s = x / e.length;
+    if (e.from != free_end && e.to != free_end && e.from != e.to)
+      {
+        const Point<2> p = position(e.from) + s * (position(e.to) - position(e.from));
+        return Point<3>(p[0], p[1], 0.);
+      }
+    // drawing scale: drawn length per unit edge length of the vertex-to-vertex edges
+    double scale = 0;
+    unsigned int n = 0;
+    for (const Edge &f : edges)
+      if (f.from != free_end && f.to != free_end && f.from != f.to)
+        {
+          scale += position(f.from).distance(position(f.to)) / f.length;
+          ++n;
+        }
+    scale = n > 0 ? scale / n : 1.;
+    const unsigned int v = e.from != free_end ? e.from : e.to;
+    if (v == free_end) // a line on its own, below the drawing
+      return Point<3>(scale * x, -1. - k, 0.);
+    Point<2> centre;
+    for (unsigned int w = 0; w < vertices.size(); ++w)
+      centre += position(w) / double(vertices.size());
+    Tensor<1, 2> out = position(v) - centre;
+    const double norm = out.norm();
+    out = norm > 0 ? out / norm : Tensor<1, 2>({1., 0.});
+    // the free ends and loops at v, each turned 30 degrees from the previous one
+    unsigned int index = 0;
+    for (unsigned int j = 0; j < k; ++j)
+      index += (edges[j].from == v || edges[j].to == v) &&
+               (edges[j].from == free_end || edges[j].to == free_end || edges[j].from == edges[j].to);
+    const double turn = (index % 2 == 0 ? 1. : -1.) * ((index + 1) / 2) * numbers::PI / 6;
+    const double phi  = std::atan2(out[1], out[0]) + turn;
+    const Tensor<1, 2> d({std::cos(phi), std::sin(phi)});
+    if (e.from == e.to) // a loop: a petal around direction d
+      {
+        const double r = 0.5 * scale * e.length * std::sin(numbers::PI * s);
+        const double theta = phi - 0.4 + 0.8 * s;
+        const Point<2> p = position(v) + r * Tensor<1, 2>({std::cos(theta), std::sin(theta)});
+        return Point<3>(p[0], p[1], 0.);
+      }
+    // an outgoing free edge runs away from v, an incoming one towards it
+    const double dist = scale * (e.from == v ? x : e.length - x);
+    const Point<2> p  = position(v) + dist * d;
+    return Point<3>(p[0], p[1], 0.);
+  }
+
+  Point<3>
+  Graph::embed_star(const unsigned int k, const double x) const
+  {
     // spread the edges of a kind evenly over a sector
-    unsigned int index = 0, count = 0;
+    const Direction dir   = edges[k].direction(0);
+    unsigned int    index = 0, count = 0;
     for (unsigned int j = 0; j < edges.size(); ++j)
-      if (edges[j].direction == edges[k].direction)
+      if (edges[j].direction(0) == dir)
         {
           if (j < k)
             ++index;
@@ -45,7 +175,7 @@ namespace granular_dg::network
     const double pi  = numbers::PI;
     const double L   = edges[k].length;
     const double pos = count > 1 ? index / double(count - 1) - 0.5 : 0.; // in [-1/2, 1/2]
-    switch (edges[k].direction)
+    switch (dir)
       {
         case Direction::in:
           {
@@ -71,13 +201,15 @@ namespace granular_dg::network
       }
   }
 
-  Junction::Junction(const Graph &graph, const NumericalFlux type, const double width)
-    : end_list(graph.vertex_ends())
+  Junction::Junction(const Graph &graph, const unsigned int v, const NumericalFlux type,
+                     const double width)
+    : end_list(graph.vertex_ends(v))
     , type(type)
     , dx0(width)
+    , label(graph.is_star() ? "vertex" : graph.vertices[v].label)
   {
-    for (const auto &e : graph.edges)
-      flux.push_back(e.flux);
+    for (const auto &end : end_list)
+      flux.push_back(graph.edges[end.edge].flux);
   }
 
   std::vector<double>
@@ -86,7 +218,7 @@ namespace granular_dg::network
     std::vector<double> F(end_list.size());
     for (unsigned int i = 0; i < end_list.size(); ++i)
       {
-        const FluxFunction &f = flux[end_list[i].edge];
+        const FluxFunction &f = flux[i];
         F[i] = end_list[i].incoming ? f.numerical_flux(type, traces[i], u0) :
                                       f.numerical_flux(type, u0, traces[i]);
       }
@@ -125,7 +257,7 @@ namespace granular_dg::network
     if (!(net_outflow(traces, lo) <= 0 && net_outflow(traces, hi) >= 0))
       {
         std::ostringstream s;
-        s << "no vertex state balances the edge fluxes at t = " << t
+        s << "no " << label << " state balances the edge fluxes at t = " << t
           << " (sum_out F - sum_in F stays "
           << (net_outflow(traces, hi) < 0 ? "negative" : "positive")
           << "): the outgoing edges cannot carry the incoming flux; use a vertex "

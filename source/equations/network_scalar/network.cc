@@ -21,7 +21,7 @@ namespace granular_dg::network
     edges.resize(other.edges.size());
     for (unsigned int k = 0; k < edges.size(); ++k)
       edges[k].reinit(other.edges[k]);
-    vertex = 0.;
+    vertices.assign(other.vertices.size(), 0.);
   }
 
   /// The value the vertex faces of the edges see (their Dirichlet data).
@@ -115,9 +115,11 @@ namespace granular_dg::network
     }
 
     /// The boundary conditions of an edge: Dirichlet with the vertex value
-    /// at its vertex ends, the far-end data or outflow at the other.
+    /// at its vertex ends (vertex[b]: the function of the vertex at boundary
+    /// id b), the far-end data or outflow at a free end.
     dg::BoundaryMap<1>
-    edge_boundary(const Edge &e, const EdgeData &d, const std::shared_ptr<Function<1>> &vertex)
+    edge_boundary(const Edge &e, const EdgeData &d,
+                  const std::array<std::shared_ptr<Function<1>>, 2> &vertex)
     {
       dg::BoundaryMap<1> boundary;
       for (const types::boundary_id b : {types::boundary_id(0), types::boundary_id(1)})
@@ -126,7 +128,7 @@ namespace granular_dg::network
           if (e.vertex_at(b))
             {
               bc.kind = dg::BoundaryKind::dirichlet;
-              bc.data = vertex;
+              bc.data = vertex[b];
             }
           else if (e.far_end == FarEnd::dirichlet)
             {
@@ -141,17 +143,19 @@ namespace granular_dg::network
 
   NetworkProblem::NetworkProblem(const Graph &graph, const Discretisation &discretisation,
                                  std::vector<EdgeData> edge_data,
-                                 const std::optional<double> vertex_value,
                                  const ExactSolution *exact, const std::string &scene)
     : net(graph)
     , disc(discretisation)
     , data(std::move(edge_data))
-    , initial_vertex_value(vertex_value)
     , exact(exact)
     , scene(scene)
-    , vertex_data(std::make_shared<VertexData>())
   {
     AssertThrow(data.size() == net.edges.size(), ExcMessage("one EdgeData per edge"));
+    for (unsigned int v = 0; v < net.vertices.size(); ++v)
+      vertex_data.push_back(std::make_shared<VertexData>());
+    const auto vertex_function = [&](const unsigned int v) -> std::shared_ptr<Function<1>> {
+      return v == free_end ? nullptr : vertex_data[v];
+    };
     h_min = 1e300;
     for (unsigned int k = 0; k < net.edges.size(); ++k)
       {
@@ -167,7 +171,8 @@ namespace granular_dg::network
         ed->dof_handler.reinit(ed->tria);
         ed->dof_handler.distribute_dofs(*ed->fe);
 
-        const auto   boundary = edge_boundary(e, data[k], vertex_data);
+        const auto   boundary =
+          edge_boundary(e, data[k], {{vertex_function(e.from), vertex_function(e.to)}});
         const System system(e.flux, disc.flux);
         ed->op = dg::make_operator<1>(disc.engine, system, boundary);
         ed->op->reinit(ed->mapping, ed->dof_handler);
@@ -185,11 +190,15 @@ namespace granular_dg::network
         edge.push_back(std::move(ed));
       }
 
-    double width = 0;
-    for (const auto &end : net.vertex_ends())
-      width += 0.5 * edge[end.edge]->h;
-    vertex = std::make_unique<Junction>(net, disc.flux, disc.vertex_width_factor * width);
+    for (unsigned int v = 0; v < net.vertices.size(); ++v)
+      {
+        double width = 0;
+        for (const auto &end : net.vertex_ends(v))
+          width += 0.5 * edge[end.edge]->h;
+        junctions.emplace_back(net, v, disc.flux, net.vertices[v].width_factor * width);
+      }
 
+    u.vertices.assign(net.vertices.size(), 0.);
     u.edges.resize(edge.size());
     for (unsigned int k = 0; k < edge.size(); ++k)
       edge[k]->op->initialize_vector(u.edges[k]);
@@ -208,8 +217,8 @@ namespace granular_dg::network
   unsigned long
   NetworkProblem::n_dofs() const
   {
-    // the edges' modes and the vertex value
-    return 1 + std::accumulate(edge.begin(), edge.end(), 0ul, [](unsigned long n, const auto &e) {
+    // the edges' modes and the vertex values
+    return net.vertices.size() + std::accumulate(edge.begin(), edge.end(), 0ul, [](unsigned long n, const auto &e) {
              return n + e->dof_handler.n_dofs();
            });
   }
@@ -236,11 +245,15 @@ namespace granular_dg::network
     i.n_stages = n_stages();
     i.snapshot_files = "solution.pvd, profile-NNNN-edge-K.csv";
     const std::string integrator = n_stages() == 1 ? "forward_euler" : "ssprk3";
-    i.description = std::to_string(net.edges.size()) + " edges, " +
-                    std::to_string(vertex->ends().size()) + " vertex ends, vertex width " +
-                    format_number(vertex->width()) + ", " + std::to_string(i.n_cells) +
-                    " cells, " + std::to_string(i.n_dofs) + " DoFs, degree " +
-                    std::to_string(disc.degree) + ", " + integrator;
+    std::string vertices;
+    if (net.is_star())
+      vertices = std::to_string(junctions[0].ends().size()) + " vertex ends, vertex width " +
+                 format_number(junctions[0].width());
+    else
+      vertices = std::to_string(net.vertices.size()) + " vertices";
+    i.description = std::to_string(net.edges.size()) + " edges, " + vertices + ", " +
+                    std::to_string(i.n_cells) + " cells, " + std::to_string(i.n_dofs) +
+                    " DoFs, degree " + std::to_string(disc.degree) + ", " + integrator;
     i.method.add("engine", edge.front()->op->engine_name());
     i.method.add("numerical_flux", numerical_flux_names.name(disc.flux));
     i.method.add("limiter", disc.limiter_name);
@@ -290,20 +303,24 @@ namespace granular_dg::network
               u.edges[k](layout.index(c, 0, m)) = moments[m] / h;
           }
       }
-    // the limiter sees the vertex value as the neighbour of the edge ends
-    const auto &given = initial_vertex_value;
-    u.vertex          = given ? *given : vertex->balance(vertex_traces(u), 0.);
-    vertex_data->u0   = u.vertex;
+    // the limiter sees the vertex values as the neighbours of the edge ends
+    for (unsigned int v = 0; v < junctions.size(); ++v)
+      {
+        const auto &given = net.vertices[v].initial_value;
+        u.vertices[v]     = given ? *given : junctions[v].balance(vertex_traces(u, v), 0.);
+        vertex_data[v]->u0 = u.vertices[v];
+      }
     for (unsigned int k = 0; k < edge.size(); ++k)
       edge[k]->limiter->apply(u.edges[k], 0.);
-    if (!given || vertex->width() == 0)
-      u.vertex = vertex->balance(vertex_traces(u), 0.);
+    for (unsigned int v = 0; v < junctions.size(); ++v)
+      if (!net.vertices[v].initial_value || junctions[v].width() == 0)
+        u.vertices[v] = junctions[v].balance(vertex_traces(u, v), 0.);
     t      = 0.;
     inflow = 0.;
     balance.mass0 = mass();
     balance.scale = l1_norm() > 0 ? l1_norm() : 1.;
     tv0 = tv_max = total_variation();
-    u00          = u.vertex;
+    u00          = u.vertices.empty() ? 0. : u.vertices[0];
     return 0.;
   }
 
@@ -313,7 +330,9 @@ namespace granular_dg::network
   {
     Inadmissible f;
     f.time   = time;
-    f.where  = k < 0 ? "vertex" : net.edges[k].label + " x = " + format_number(x);
+    f.where  = k >= 0     ? net.edges[k].label + " x = " + format_number(x) :
+               net.is_star() ? std::string("vertex") :
+                               net.vertices[-1 - k].label;
     f.names  = {"u"};
     f.state  = {value};
     f.reason = reason;
@@ -337,10 +356,10 @@ namespace granular_dg::network
   }
 
   std::vector<double>
-  NetworkProblem::vertex_traces(const NetworkState &s) const
+  NetworkProblem::vertex_traces(const NetworkState &s, const unsigned int v) const
   {
     std::vector<double> traces;
-    for (const auto &end : vertex->ends())
+    for (const auto &end : junctions[v].ends())
       {
         const auto &e = *edge[end.edge];
         traces.push_back(end.incoming ? end_value(end.edge, e.last(), true, s) :
@@ -356,32 +375,48 @@ namespace granular_dg::network
     for (unsigned int k = 0; k < edge.size(); ++k)
       {
         const Edge &e = net.edges[k];
-        if (e.direction == Direction::loop)
-          continue;
-        const bool   in    = e.direction == Direction::in;
-        const double x     = in ? 0. : e.length;
-        const double trace = in ? end_value(k, edge[k]->first(), false, s) :
-                                  end_value(k, edge[k]->last(), true, s);
-        double ghost = trace;
-        if (e.far_end == FarEnd::dirichlet)
+        // the free end x = 0 (inflow side) and x = L (outflow side)
+        for (const bool in : {true, false})
           {
-            data[k].far_end->set_time(time);
-            ghost = data[k].far_end->value(Point<1>(x));
+            if ((in ? e.from : e.to) != free_end)
+              continue;
+            const double x     = in ? 0. : e.length;
+            const double trace = in ? end_value(k, edge[k]->first(), false, s) :
+                                      end_value(k, edge[k]->last(), true, s);
+            double ghost = trace;
+            if (e.far_end == FarEnd::dirichlet)
+              {
+                data[k].far_end->set_time(time);
+                ghost = data[k].far_end->value(Point<1>(x));
+              }
+            sum += in ? e.flux.numerical_flux(disc.flux, ghost, trace) :
+                        -e.flux.numerical_flux(disc.flux, trace, ghost);
           }
-        sum += in ? e.flux.numerical_flux(disc.flux, ghost, trace) :
-                    -e.flux.numerical_flux(disc.flux, trace, ghost);
       }
     return sum;
   }
 
   double
+  NetworkProblem::vertex_state(const unsigned int v, const NetworkState &s, const double time) const
+  {
+    return junctions[v].width() > 0 ? s.vertices[v] :
+                                      junctions[v].balance(vertex_traces(s, v), time);
+  }
+
+  const std::vector<double> &
   NetworkProblem::couple(const double time, const NetworkState &src) const
   {
-    const auto   traces = vertex_traces(src);
-    const double u0     = vertex->width() > 0 ? src.vertex : vertex->balance(traces, time);
-    vertex_data->u0     = u0;
+    rates.resize(junctions.size());
+    for (unsigned int v = 0; v < junctions.size(); ++v)
+      {
+        const auto   traces = vertex_traces(src, v);
+        const double u0     = junctions[v].width() > 0 ? src.vertices[v] :
+                                                         junctions[v].balance(traces, time);
+        vertex_data[v]->u0  = u0;
+        rates[v]            = junctions[v].rate(traces, u0);
+      }
     stage_inflow.push_back(far_end_inflow(time, src));
-    return vertex->rate(traces, u0);
+    return rates;
   }
 
   void
@@ -390,18 +425,26 @@ namespace granular_dg::network
   {
     // the vertex coupling is part of the right-hand side of the network
     StepPhases::Scope scope(phases, StepPhases::operator_apply);
-    const double      rate = couple(time, src);
+    const auto       &rate = couple(time, src);
     for (unsigned int k = 0; k < edge.size(); ++k)
       edge[k]->op->apply_stage(
         time, src.edges[k], dst.edges[k],
         dg::StageUpdate<>{s.old ? &s.old->edges[k] : nullptr, s.alpha, s.beta, s.gamma});
-    dst.vertex = dg::stage_value(s, src.vertex, s.old ? s.old->vertex : 0., rate);
+    dst.vertices.resize(src.vertices.size());
+    for (unsigned int v = 0; v < junctions.size(); ++v)
+      dst.vertices[v] =
+        dg::stage_value(s, src.vertices[v], s.old ? s.old->vertices[v] : 0., rate[v]);
   }
 
   std::pair<double, double>
   NetworkProblem::range_of_step(const double time, const double dt) const
   {
-    double lo = u.vertex, hi = u.vertex;
+    double lo = INFINITY, hi = -INFINITY;
+    for (const double v : u.vertices)
+      {
+        lo = std::min(lo, v);
+        hi = std::max(hi, v);
+      }
     for (const auto &e : u.edges)
       for (const double v : e)
         {
@@ -409,28 +452,29 @@ namespace granular_dg::network
           hi = std::max(hi, v);
         }
     for (unsigned int k = 0; k < net.edges.size(); ++k)
-      if (net.edges[k].direction != Direction::loop &&
-          net.edges[k].far_end == FarEnd::dirichlet)
-        for (const double s : {time, time + 0.5 * dt, time + dt})
-          {
-            data[k].far_end->set_time(s);
-            const double g =
-              data[k].far_end->value(Point<1>(net.edges[k].direction == Direction::in ?
-                                                0. :
-                                                net.edges[k].length));
-            lo = std::min(lo, g);
-            hi = std::max(hi, g);
-          }
+      for (const bool start : {true, false})
+        if ((start ? net.edges[k].from : net.edges[k].to) == free_end &&
+            net.edges[k].far_end == FarEnd::dirichlet)
+          for (const double s : {time, time + 0.5 * dt, time + dt})
+            {
+              data[k].far_end->set_time(s);
+              const double g = data[k].far_end->value(Point<1>(start ? 0. : net.edges[k].length));
+              lo = std::min(lo, g);
+              hi = std::max(hi, g);
+            }
     return {lo, hi};
   }
 
   void
   NetworkProblem::check_maximum_principle(const NetworkState &s, const double stage_time)
   {
-    // the vertex is a neighbour of the edge ends: its (stage) value is a
+    // a vertex is a neighbour of its edge ends: its (stage) value is a
     // value the edges may take on
-    bounds.first  = std::min(bounds.first, s.vertex);
-    bounds.second = std::max(bounds.second, s.vertex);
+    for (const double v : s.vertices)
+      {
+        bounds.first  = std::min(bounds.first, v);
+        bounds.second = std::max(bounds.second, v);
+      }
     const auto [lo, hi] = bounds;
     const double tol    = 1e-12 * (hi - lo + std::max(std::abs(lo), std::abs(hi)));
     for (unsigned int k = 0; k < edge.size(); ++k)
@@ -442,7 +486,7 @@ namespace granular_dg::network
                           edge[k]->left(c) + 0.5 * edge[k]->layout().extent(c, 0), v,
                           "maximum principle violated: u outside [" + format_number(lo) +
                             ", " + format_number(hi) +
-                            "], the range of the cell averages, vertex value and "
+                            "], the range of the cell averages, vertex values and "
                             "far-end data at the start of the step (degree 0 is monotone "
                             "only up to its CFL limit; CFL number " +
                             format_number(disc.cfl) + ")");
@@ -454,12 +498,13 @@ namespace granular_dg::network
   {
     {
       StepPhases::Scope scope(phases, StepPhases::limiter);
-      vertex_data->u0 =
-        vertex->width() > 0 ? s.vertex : vertex->balance(vertex_traces(s), stage_time);
+      for (unsigned int v = 0; v < junctions.size(); ++v)
+        vertex_data[v]->u0 = vertex_state(v, s, stage_time);
       for (unsigned int k = 0; k < edge.size(); ++k)
         edge[k]->limiter->apply(s.edges[k], stage_time);
-      if (vertex->width() == 0)
-        s.vertex = vertex->balance(vertex_traces(s), stage_time);
+      for (unsigned int v = 0; v < junctions.size(); ++v)
+        if (junctions[v].width() == 0)
+          s.vertices[v] = junctions[v].balance(vertex_traces(s, v), stage_time);
     }
     StepPhases::Scope scope(phases, StepPhases::admissibility);
     post_stage_checks(s, stage_time);
@@ -468,8 +513,9 @@ namespace granular_dg::network
   void
   NetworkProblem::post_stage_checks(const NetworkState &s, const double stage_time)
   {
-    if (!std::isfinite(s.vertex))
-      throw failure(stage_time, -1, 0., s.vertex, "vertex value is not finite");
+    for (unsigned int v = 0; v < s.vertices.size(); ++v)
+      if (!std::isfinite(s.vertices[v]))
+        throw failure(stage_time, -1 - int(v), 0., s.vertices[v], "vertex value is not finite");
     // (non-finite values fail this test too, and are reported as such below)
     if (disc.degree == 0 && std::isfinite(bounds.first) && std::isfinite(bounds.second))
       {
@@ -499,10 +545,11 @@ namespace granular_dg::network
     double speed_over_h = 0;
     for (unsigned int k = 0; k < edge.size(); ++k)
       speed_over_h = std::max(speed_over_h, edge[k]->op->max_speed_over_h(u.edges[k], 0.));
-    for (const auto &end : vertex->ends())
-      speed_over_h = std::max(speed_over_h,
-                              std::abs(net.edges[end.edge].flux.derivative(u.vertex)) /
-                                edge[end.edge]->h);
+    for (unsigned int v = 0; v < junctions.size(); ++v)
+      for (const auto &end : junctions[v].ends())
+        speed_over_h = std::max(speed_over_h,
+                                std::abs(net.edges[end.edge].flux.derivative(u.vertices[v])) /
+                                  edge[end.edge]->h);
     const double dt = disc.cfl / speed_over_h;
     if (!(std::isfinite(dt) && dt > 0))
       throw RunError("time step is " + format_number(dt) + " at t = " + format_number(time) +
@@ -567,7 +614,9 @@ namespace granular_dg::network
   double
   NetworkProblem::mass() const
   {
-    double m = vertex->width() * u.vertex;
+    double m = 0;
+    for (unsigned int v = 0; v < junctions.size(); ++v)
+      m += junctions[v].width() * u.vertices[v];
     for (unsigned int k = 0; k < edge.size(); ++k)
       m += edge[k]->quadrature.integrals(u.edges[k])[0];
     return m;
@@ -576,7 +625,9 @@ namespace granular_dg::network
   double
   NetworkProblem::l1_norm() const
   {
-    double m = vertex->width() * std::abs(u.vertex);
+    double m = 0;
+    for (unsigned int v = 0; v < junctions.size(); ++v)
+      m += junctions[v].width() * std::abs(u.vertices[v]);
     for (unsigned int k = 0; k < edge.size(); ++k)
       {
         const auto &layout = edge[k]->layout();
@@ -589,7 +640,14 @@ namespace granular_dg::network
   double
   NetworkProblem::rh_residual() const
   {
-    return -vertex->net_outflow(vertex_traces(u), u.vertex);
+    double largest = 0;
+    for (unsigned int v = 0; v < junctions.size(); ++v)
+      {
+        const double r = -junctions[v].net_outflow(vertex_traces(u, v), u.vertices[v]);
+        if (std::abs(r) > std::abs(largest) || v == 0)
+          largest = r;
+      }
+    return largest;
   }
 
   double
@@ -604,12 +662,13 @@ namespace granular_dg::network
           tv += std::abs(u.edges[k](layout.index(order[i + 1], 0, 0)) -
                          u.edges[k](layout.index(order[i], 0, 0)));
       }
-    for (const auto &end : vertex->ends())
-      {
-        const auto        &e = *edge[end.edge];
-        const unsigned int c = end.incoming ? e.last() : e.first();
-        tv += std::abs(u.vertex - u.edges[end.edge](e.layout().index(c, 0, 0)));
-      }
+    for (unsigned int v = 0; v < junctions.size(); ++v)
+      for (const auto &end : junctions[v].ends())
+        {
+          const auto        &e = *edge[end.edge];
+          const unsigned int c = end.incoming ? e.last() : e.first();
+          tv += std::abs(u.vertices[v] - u.edges[end.edge](e.layout().index(c, 0, 0)));
+        }
     return tv;
   }
 
@@ -647,11 +706,14 @@ namespace granular_dg::network
       }
     for (const double l1 : e.l1_per_edge)
       e.l1_edges += l1;
-    const double d0 = std::abs(u.vertex - solution.vertex_value(time));
-    e.l1_vertex     = vertex->width() * d0;
-    l2 += vertex->width() * d0 * d0;
-    if (vertex->width() > 0)
-      e.linf = std::max(e.linf, d0);
+    for (unsigned int v = 0; v < junctions.size(); ++v)
+      {
+        const double d0 = std::abs(u.vertices[v] - solution.vertex_value(v, time));
+        e.l1_vertex += junctions[v].width() * d0;
+        l2 += junctions[v].width() * d0 * d0;
+        if (junctions[v].width() > 0)
+          e.linf = std::max(e.linf, d0);
+      }
     e.l1 = e.l1_edges + e.l1_vertex;
     e.l2 = std::sqrt(l2);
     return e;
@@ -661,7 +723,9 @@ namespace granular_dg::network
   NetworkProblem::l1_distance(const NetworkProblem &other) const
   {
     const QGauss<1> quad(disc.degree + 2);
-    double          sum = vertex->width() * std::abs(u.vertex - other.u.vertex);
+    double          sum = 0;
+    for (unsigned int v = 0; v < junctions.size(); ++v)
+      sum += junctions[v].width() * std::abs(u.vertices[v] - other.u.vertices[v]);
     for (unsigned int k = 0; k < edge.size(); ++k)
       {
         const auto &layout = edge[k]->layout();
@@ -696,30 +760,52 @@ namespace granular_dg::network
   std::vector<std::string>
   NetworkProblem::timeseries_names() const
   {
-    std::vector<std::string> header{"mass",          "mass_balance_residual", "boundary_inflow",
-                                    "vertex_value",  "total_variation",       "rh_residual"};
+    const bool               vertices = !junctions.empty();
+    std::vector<std::string> header{"mass", "mass_balance_residual", "boundary_inflow"};
+    if (vertices)
+      header.emplace_back("vertex_value");
+    header.emplace_back("total_variation");
+    if (vertices)
+      header.emplace_back("rh_residual");
+    if (exact && vertices)
+      header.emplace_back("vertex_exact");
     if (exact)
-      for (const char *n : {"vertex_exact", "l1_error", "l1_error_vertex"})
-        header.emplace_back(n);
+      header.emplace_back("l1_error");
+    if (exact && vertices)
+      header.emplace_back("l1_error_vertex");
     return header;
   }
 
   std::string
   NetworkProblem::timeseries_comment() const
   {
+    if (net.is_star())
+      return "mass_balance_residual = |mass - mass(0) - boundary_inflow| / ||u(0)||_L1; "
+             "rh_residual = sum_in F - sum_out F at the vertex";
     return "mass_balance_residual = |mass - mass(0) - boundary_inflow| / ||u(0)||_L1; "
-           "rh_residual = sum_in F - sum_out F at the vertex";
+           "vertex_value, vertex_exact: at " +
+           (junctions.empty() ? std::string("no vertex") : net.vertices[0].label) +
+           "; rh_residual = sum_in F - sum_out F at the vertex where it is largest";
   }
 
   std::vector<double>
   NetworkProblem::timeseries_values(const double time)
   {
-    std::vector<double> row{mass(),          std::abs(balance_residual()), inflow,
-                            u.vertex,        total_variation(),            rh_residual()};
+    const bool          vertices = !junctions.empty();
+    std::vector<double> row{mass(), std::abs(balance_residual()), inflow};
+    if (vertices)
+      row.push_back(u.vertices[0]);
+    row.push_back(total_variation());
+    if (vertices)
+      row.push_back(rh_residual());
     if (exact)
       {
         const auto e = errors(*exact, time);
-        row.insert(row.end(), {exact->vertex_value(time), e.l1, e.l1_vertex});
+        if (vertices)
+          row.push_back(exact->vertex_value(0, time));
+        row.push_back(e.l1);
+        if (vertices)
+          row.push_back(e.l1_vertex);
       }
     return row;
   }
@@ -729,7 +815,8 @@ namespace granular_dg::network
   NetworkProblem::state_io(Archive &ar)
   {
     ar.io(inflow);
-    ar.io(u.vertex);
+    for (double &v : u.vertices)
+      ar.io(v);
     for (auto &e : u.edges)
       {
         std::vector<double> modes(e.begin(), e.end());
@@ -762,8 +849,19 @@ namespace granular_dg::network
       return;
     JsonObject &d = result.diagnostics;
     d.add("n_edges", static_cast<long long>(net.edges.size()));
-    d.add("n_vertex_ends", static_cast<long long>(vertex->ends().size()));
-    d.add("vertex_width", vertex->width());
+    if (net.is_star())
+      {
+        d.add("n_vertex_ends", static_cast<long long>(junctions[0].ends().size()));
+        d.add("vertex_width", junctions[0].width());
+      }
+    else
+      {
+        long long ends = 0;
+        for (const auto &j : junctions)
+          ends += j.ends().size();
+        d.add("n_vertices", static_cast<long long>(junctions.size()));
+        d.add("n_vertex_ends", ends);
+      }
     d.add("integrator", n_stages() == 1 ? "forward_euler" : "ssprk3");
     d.add("cfl", disc.cfl);
     d.add("mass_initial", balance.mass0);
@@ -771,9 +869,14 @@ namespace granular_dg::network
     d.add("boundary_inflow", inflow);
     d.add("mass_balance_residual_max", balance.max_residual);
     d.add("mass_step_residual_max", balance.max_step);
-    d.add("vertex_value_initial", u00);
-    d.add("vertex_value_final", u.vertex);
-    d.add("rh_residual_final", rh_residual());
+    if (!junctions.empty())
+      {
+        d.add("vertex_value_initial", u00);
+        d.add("vertex_value_final", u.vertices[0]);
+        d.add("rh_residual_final", rh_residual());
+      }
+    if (!net.is_star() && junctions.size() <= 100)
+      d.add("vertex_values_final", u.vertices);
     d.add("total_variation_initial", tv0);
     d.add("total_variation_final", total_variation());
     d.add("total_variation_max", tv_max);
@@ -785,7 +888,8 @@ namespace granular_dg::network
     result.errors.push_back({{e.l1, e.l2, e.linf}});
     result.l2_error = e.l2;
     d.add("exact_solution", exact->name());
-    d.add("vertex_exact_final", exact->vertex_value(time));
+    if (!junctions.empty())
+      d.add("vertex_exact_final", exact->vertex_value(0, time));
     d.add("l1_error", e.l1);
     d.add("l1_error_edges", e.l1_edges);
     d.add("l1_error_vertex", e.l1_vertex);

@@ -77,10 +77,14 @@ namespace granular_dg::network
             }
           patches.push_back(line_patch(points, values, patches.size()));
         }
-    // the vertex at the origin: a patch of length 0 with its value
-    patches.push_back(line_patch({Point<2>(), Point<2>()},
-                                 {{{u.vertex, 0., 0., 0.}}, {{u.vertex, 0., 0., 0.}}},
-                                 patches.size()));
+    // every vertex: a patch of length 0 with its value (edge number 0)
+    for (unsigned int v = 0; v < net.vertices.size(); ++v)
+      {
+        const Point<2> p = net.position(v);
+        patches.push_back(line_patch({p, p},
+                                     {{{u.vertices[v], 0., 0., 0.}}, {{u.vertices[v], 0., 0., 0.}}},
+                                     patches.size()));
+      }
     DataOutBase::VtkFlags flags(time, index);
     flags.print_date_and_time = false;
     const std::string name    = snapshot_name("solution-", index, ".vtu");
@@ -105,8 +109,13 @@ namespace granular_dg::network
           header.push_back("exact");
         std::ostringstream comment;
         comment << "time = " << format_number(time) << "\n# " << e.label << ": "
-                << direction_name(e.direction) << ", length " << format_number(e.length) << ", "
-                << e.flux.describe() << "; vertex value " << format_number(u.vertex);
+                << net.describe(k) << ", length " << format_number(e.length) << ", "
+                << e.flux.describe();
+        if (net.is_star())
+          comment << "; vertex value " << format_number(u.vertices[0]);
+        for (const unsigned int v : {e.from, e.to})
+          if (!net.is_star() && v != free_end)
+            comment << "; " << net.vertices[v].label << " value " << format_number(u.vertices[v]);
         CsvWriter csv;
         csv.open(directory + "/" +
                    snapshot_name("profile-", index, "-edge-" + std::to_string(k + 1) + ".csv"),
@@ -136,11 +145,11 @@ namespace granular_dg::network
 
   RunResult
   run_network(const Graph &graph, const std::vector<EdgeData> &data,
-              const Discretisation &discretisation, const std::optional<double> vertex_value,
-              const ExactSolution *exact, const RunParameters &params, const bool write_files,
+              const Discretisation &discretisation, const ExactSolution *exact,
+              const RunParameters &params, const bool write_files,
               const std::string &scene)
   {
-    NetworkProblem p(graph, discretisation, data, vertex_value, exact, scene);
+    NetworkProblem p(graph, discretisation, data, exact, scene);
     TimeLoop       loop(p, params, write_files);
     return loop.run();
   }
@@ -171,8 +180,7 @@ namespace granular_dg::network
 
   void
   run_network_convergence(const Graph &graph, const std::vector<EdgeData> &data,
-                          const Discretisation &discretisation,
-                          const std::optional<double> vertex_value, const ExactSolution &exact,
+                          const Discretisation &discretisation, const ExactSolution &exact,
                           const RunParameters &params, const std::vector<double> &cfl)
   {
     CsvWriter                table, rates;
@@ -204,7 +212,7 @@ namespace granular_dg::network
         for (const unsigned int cells : params.convergence_cells)
           {
             d.cells_per_unit_length = cells;
-            NetworkProblem  p(graph, d, data, vertex_value, &exact);
+            NetworkProblem  p(graph, d, data, &exact);
             const RunResult r   = TimeLoop(p, params, false).run();
             const auto      e   = p.errors(exact, r.final_time);
             const double    eoc = e_prev > 0 ? std::log(e_prev / e.l1) /

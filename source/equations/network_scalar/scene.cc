@@ -1,9 +1,10 @@
 /**
- * The `network` scene: scalar conservation laws (system.h) on a star graph
- * whose edges are given in the prm (Network/Edge 1..8: direction, length,
- * flux, initial data, far-end condition), coupled by the vertex control
- * volume (network/junction.h); a single run or a convergence study against
- * one of the exact solutions of examples.h.
+ * The `network` scene: scalar conservation laws (system.h) on a directed
+ * graph whose edges (length, flux, initial data, free-end conditions) and
+ * vertices are given in the prm (Network/Edge N, Vertex N) or in CSV files
+ * (graph_input.h), coupled by vertex control volumes (junction.h); a single
+ * run or a convergence study against one of the exact solutions of
+ * examples.h.
  */
 
 #include <deal.II/base/mpi.h>
@@ -14,6 +15,7 @@
 #include <granular_dg/dg/parameters.h>
 #include <granular_dg/dg/scene_entry.h>
 #include <granular_dg/equations/network_scalar/examples.h>
+#include <granular_dg/equations/network_scalar/graph_input.h>
 #include <granular_dg/equations/network_scalar/network.h>
 #include <granular_dg/equations/network_scalar/system.h>
 
@@ -23,24 +25,9 @@ namespace granular_dg::network
 {
   namespace
   {
-    constexpr unsigned int max_edges = 8;
-
-    enum class EdgeKind
-    {
-      none,
-      in,
-      out,
-      loop
-    };
-    const EnumNames<EdgeKind> direction_names({{EdgeKind::none, "none"},
-                                               {EdgeKind::in, "in"},
-                                               {EdgeKind::out, "out"},
-                                               {EdgeKind::loop, "loop"}});
-    const EnumNames<FluxLaw>  law_names({{FluxLaw::linear, "linear"},
-                                         {FluxLaw::burgers, "burgers"},
-                                         {FluxLaw::traffic, "traffic"}});
-    const EnumNames<FarEnd>   far_end_names({{FarEnd::dirichlet, "dirichlet"},
-                                             {FarEnd::outflow, "outflow"}});
+    const EnumNames<FluxLaw> law_names({{FluxLaw::linear, "linear"},
+                                        {FluxLaw::burgers, "burgers"},
+                                        {FluxLaw::traffic, "traffic"}});
     const EnumNames<Integrator> integrator_names({{Integrator::automatic, "auto"},
                                                   {Integrator::forward_euler, "forward_euler"},
                                                   {Integrator::ssprk3, "ssprk3"}});
@@ -54,12 +41,6 @@ namespace granular_dg::network
       return s;
     }
 
-    std::string
-    edge_section(const unsigned int i)
-    {
-      return "Edge " + std::to_string(i + 1);
-    }
-
     /// Everything the network scene reads from the prm file: the graph,
     /// the data of its edges, the method on it, the vertex value, the exact
     /// solution and the CFL numbers of a convergence study.
@@ -71,11 +52,8 @@ namespace granular_dg::network
       parse(ParameterHandler &prm, const RunParameters &common,
             const dg::DiscretizationParameters &method);
 
-      Graph                          graph;
-      std::vector<EdgeData>          data;
-      std::vector<std::string>       initial_text;
+      GraphInput                     input;
       Discretisation                 disc;
-      std::optional<double>          vertex_value;
       std::shared_ptr<ExactSolution> exact;
       std::vector<double>            cfl;
     };
@@ -97,50 +75,26 @@ namespace granular_dg::network
                         "Cells per unit length of edge: the paper's grid level l is 2^l "
                         "(dx = 2^-l); an edge of length L gets round(L * this) cells.");
       prm.declare_entry("vertex width factor", "1", Patterns::Double(0),
-                        "Width of the vertex control volume in units of the paper's "
-                        "dx_0 = N dx/2 (the half cells of the N edge ends at the vertex; a "
-                        "loop has two). 1: the paper's scheme (4.1). 0: a vertex without "
-                        "volume whose value solves the discrete Rankine-Hugoniot condition "
-                        "sum_in F = sum_out F at every stage.");
+                        "Width of every vertex control volume (unless its Vertex N section "
+                        "says otherwise) in units of the paper's dx_0 = N dx/2 (the half "
+                        "cells of the N edge ends at the vertex; a loop has two). 1: the "
+                        "paper's scheme (4.1). 0: a vertex without volume whose value solves "
+                        "the discrete Rankine-Hugoniot condition sum_in F = sum_out F at "
+                        "every stage.");
       prm.declare_entry("vertex initial value", "stationary", Patterns::Anything(),
-                        "u_0 at t = 0: 'stationary' (the discrete stationary value c_0 of "
-                        "the initial edge traces, Definition 4.4) or a constant expression, "
+                        "u_0 of every vertex at t = 0 (unless its Vertex N section says "
+                        "otherwise): 'stationary' (the discrete stationary value c_0 of the "
+                        "initial edge traces, Definition 4.4) or a constant expression, "
                         "e.g. sqrt(2/3).");
       prm.declare_entry("exact solution", "none", Patterns::Selection(exact_choices()),
                         "Exact solution for the error measurement (L1 over all edges and "
                         "the vertex cell): none, initial_data (the data are a stationary "
                         "state), example_7_1 ... example_7_5 (Musch, Fjordholm & Risebro "
-                        "Section 7; the graph and data are checked against the example) or "
-                        "smooth_linear (a smooth solution through the vertex).");
-      for (unsigned int i = 0; i < max_edges; ++i)
-        {
-          prm.enter_subsection(edge_section(i));
-          prm.declare_entry("direction", "none", direction_names.pattern(),
-                            "How the edge meets the vertex: in (it ends at the vertex, x = "
-                            "length), out (it starts there, x = 0), loop (a roundabout: both "
-                            "ends at the vertex) or none (no such edge).");
-          prm.declare_entry("length", "1", Patterns::Double(),
-                            "Length L of the edge; its coordinate x runs over [0, L] in the "
-                            "direction of the edge. Must be > 0.");
-          prm.declare_entry("flux", "burgers", law_names.pattern(),
-                            "Flux: linear (f = a u), burgers (f = u^2/2) or traffic "
-                            "(f = alpha f0(u/alpha), f0(u) = 4u(1-u)).");
-          prm.declare_entry("advection speed", "1", Patterns::Double(),
-                            "a of the linear flux.");
-          prm.declare_entry("alpha", "1", Patterns::Double(),
-                            "alpha of the traffic flux (capacity alpha at u = alpha/2). "
-                            "Must be > 0.");
-          prm.declare_entry("initial data", "0", Patterns::Anything(),
-                            "u(x, 0) as an expression in x (edge coordinate) and pi, e.g. "
-                            "if(x < 0.5, 2, sqrt(2)).");
-          prm.declare_entry("far end", "outflow", far_end_names.pattern(),
-                            "Condition at the end away from the vertex (not for loops): "
-                            "dirichlet (exterior state = far end data: inflow) or outflow "
-                            "(exterior = interior state, the paper's zero Neumann).");
-          prm.declare_entry("far end data", "0", Patterns::Anything(),
-                            "Dirichlet state at the far end, an expression in t and pi.");
-          prm.leave_subsection();
-        }
+                        "Section 7; the graph and data are checked against the example), "
+                        "smooth_linear (a smooth solution through the vertex), two_stars "
+                        "(two star vertices joined by an edge, Burgers shocks) or "
+                        "smooth_two_vertices (a smooth solution through two vertices).");
+      GraphInput::declare(prm);
       prm.leave_subsection();
 
       prm.enter_subsection("Time stepping");
@@ -155,20 +109,20 @@ namespace granular_dg::network
     class InitialData : public ExactSolution
     {
     public:
-      InitialData(std::vector<std::shared_ptr<Function<1>>> f, const double vertex)
+      InitialData(std::vector<std::shared_ptr<Function<1>>> f, std::vector<double> vertex)
         : f(std::move(f))
-        , vertex(vertex)
+        , vertex(std::move(vertex))
       {}
       double value(unsigned int k, double x, double) const override
       {
         return f[k]->value(Point<1>(x));
       }
-      double vertex_value(double) const override { return vertex; }
+      double vertex_value(unsigned int v, double) const override { return vertex[v]; }
       std::string name() const override { return "initial_data"; }
 
     private:
       std::vector<std::shared_ptr<Function<1>>> f;
-      double                                    vertex;
+      std::vector<double>                       vertex;
     };
 
     std::string
@@ -180,25 +134,33 @@ namespace granular_dg::network
     /// An example's exact solution is only used for the graph and data it
     /// belongs to: the directions, fluxes, initial data and Dirichlet data.
     void
-    check_example(const Example &ex, const Case &c, const std::vector<unsigned int> &slots,
-                  const double final_time)
+    check_example(const Example &ex, const Case &c, const double final_time)
     {
-      const std::string name = "Network/exact solution";
-      require(c.graph.edges.size() == ex.edges.size(), name, ex.name,
+      const std::string name  = "Network/exact solution";
+      const Graph      &graph = c.input.graph;
+      require(graph.edges.size() == ex.edges.size() && graph.vertices.size() == ex.n_vertices,
+              name, ex.name,
               "an example whose graph is the prm's: " + ex.name + " has " +
-                std::to_string(ex.edges.size()) + " edges, the prm " +
-                std::to_string(c.graph.edges.size()));
+                std::to_string(ex.edges.size()) + " edges and " +
+                std::to_string(ex.n_vertices) + " vertices, the prm " +
+                std::to_string(graph.edges.size()) + " and " +
+                std::to_string(graph.vertices.size()));
       require(final_time <= ex.exact->valid_until() * (1 + 1e-12), name, ex.name,
               "an exact solution known up to the final time: " + ex.name + " is known for t <= " +
                 number(ex.exact->valid_until()));
       for (unsigned int k = 0; k < ex.edges.size(); ++k)
         {
-          const Edge        &e    = c.graph.edges[k];
+          const Edge        &e    = graph.edges[k];
           const auto        &want = ex.edges[k];
-          const std::string  sec  = "Network/" + edge_section(slots[k]) + "/";
+          const std::string &sec  = c.input.where[k];
           const std::string  why  = ", as " + ex.name + " expects (or set Network/exact solution = none)";
-          require(e.direction == want.direction, sec + "direction", direction_name(e.direction),
-                  direction_name(want.direction) + why);
+          Edge expected = e;
+          expected.from = want.from;
+          expected.to   = want.to;
+          Graph expected_graph = graph;
+          expected_graph.edges[k] = expected;
+          require(e.from == want.from && e.to == want.to, sec + "direction",
+                  graph.describe(k), expected_graph.describe(k) + why);
           require(e.flux.law == want.flux.law, sec + "flux", law_names.name(e.flux.law),
                   law_names.name(want.flux.law) + why);
           if (want.flux.law == FluxLaw::linear)
@@ -217,19 +179,19 @@ namespace granular_dg::network
                 near_jump |= std::abs(x - b) < 1e-9;
               if (near_jump)
                 continue;
-              const double given = c.data[k].initial->value(Point<1>(x));
+              const double given = c.input.data[k].initial->value(Point<1>(x));
               const double exact = ex.exact->value(k, x, 0.);
               require(std::abs(given - exact) <= 1e-12 * std::max(1., std::abs(exact)),
-                      sec + "initial data", c.initial_text[k],
+                      sec + "initial data", c.input.initial_text[k],
                       "the initial data of " + ex.name + " (or set Network/exact solution = "
                       "none): at x = " + number(x) + " it gives " + number(given) +
                         ", the example " + number(exact));
             }
-          if (e.direction == Direction::in && e.far_end == FarEnd::dirichlet)
+          if (e.from == free_end && e.far_end == FarEnd::dirichlet)
             for (const double t : {0., 0.5 * final_time, final_time})
               {
-                c.data[k].far_end->set_time(t);
-                const double given = c.data[k].far_end->value(Point<1>(0.));
+                c.input.data[k].far_end->set_time(t);
+                const double given = c.input.data[k].far_end->value(Point<1>(0.));
                 const double exact = ex.exact->value(k, 0., t);
                 require(std::abs(given - exact) <= 1e-12 * std::max(1., std::abs(exact)),
                         sec + "far end data", given,
@@ -272,90 +234,30 @@ namespace granular_dg::network
 
       prm.enter_subsection("Network");
       c.disc.cells_per_unit_length = prm.get_integer("cells per unit length");
-      c.disc.vertex_width_factor   = prm.get_double("vertex width factor");
-      const std::string vertex_text = prm.get("vertex initial value");
-      const std::string exact_name  = prm.get("exact solution");
-      std::vector<unsigned int> slots;
-      for (unsigned int i = 0; i < max_edges; ++i)
-        {
-          const std::string sec = "Network/" + edge_section(i) + "/";
-          prm.enter_subsection(edge_section(i));
-          const EdgeKind kind = direction_names.parse(sec + "direction", prm.get("direction"));
-          if (kind == EdgeKind::none)
-            {
-              prm.leave_subsection();
-              continue;
-            }
-          Edge e;
-          e.label     = edge_section(i);
-          e.direction = kind == EdgeKind::in ? Direction::in :
-                        kind == EdgeKind::out ? Direction::out : Direction::loop;
-          e.length = prm.get_double("length");
-          require(e.length > 0, sec + "length", prm.get("length"), "must be > 0");
-          e.flux.law   = law_names.parse(sec + "flux", prm.get("flux"));
-          e.flux.speed = prm.get_double("advection speed");
-          e.flux.alpha = prm.get_double("alpha");
-          require(e.flux.law != FluxLaw::traffic || e.flux.alpha > 0, sec + "alpha",
-                  prm.get("alpha"), "must be > 0 (the capacity scale of the traffic flux)");
-          e.far_end = far_end_names.parse(sec + "far end", prm.get("far end"));
-          EdgeData d;
-          c.initial_text.push_back(prm.get("initial data"));
-          d.initial = make_function<1>({c.initial_text.back()}, {sec + "initial data"}, false);
-          if (e.far_end == FarEnd::dirichlet && e.direction != Direction::loop)
-            {
-              // an expression in t (x is the far end's coordinate)
-              d.far_end = make_function<1>({prm.get("far end data")}, {sec + "far end data"}, true);
-            }
-          prm.leave_subsection();
-          c.graph.edges.push_back(e);
-          c.data.push_back(d);
-          slots.push_back(i);
-        }
+      const std::string exact_name = prm.get("exact solution");
+      c.input.parse(prm);
       prm.leave_subsection();
-      require(!c.graph.edges.empty(), "Network/Edge 1/direction", "none",
-              "in, out or loop for at least one Network/Edge N");
-
-      if (vertex_text != "stationary")
-        {
-          const std::string allowed = "'stationary' or a constant expression, e.g. sqrt(2/3)";
-          try
-            {
-              const auto f = make_function<1>({vertex_text}, {"Network/vertex initial value"}, false);
-              const double v = f->value(Point<1>(0.3));
-              require(v == f->value(Point<1>(0.7)), "Network/vertex initial value", vertex_text,
-                      allowed);
-              c.vertex_value = v;
-            }
-          catch (const InputError &)
-            {
-              require(false, "Network/vertex initial value", vertex_text, allowed);
-            }
-        }
 
       if (exact_name == "initial_data")
         {
           std::vector<std::shared_ptr<Function<1>>> f;
-          for (const auto &d : c.data)
+          for (const auto &d : c.input.data)
             f.push_back(d.initial);
-          // the vertex value of a stationary state: given or c_0 of the data
-          double u0 = 0;
-          if (c.vertex_value)
-            u0 = *c.vertex_value;
-          else
-            {
-              NetworkProblem probe(c.graph, c.disc, c.data);
-              probe.initialize();
-              u0 = probe.vertex_value();
-            }
+          // the vertex values of a stationary state: given, or c_0 of the data
+          NetworkProblem probe(c.input.graph, c.disc, c.input.data);
+          probe.initialize();
+          std::vector<double> u0;
+          for (unsigned int v = 0; v < c.input.graph.vertices.size(); ++v)
+            u0.push_back(probe.vertex_value(v));
           c.exact = std::make_shared<InitialData>(f, u0);
         }
       else if (exact_name != "none")
         {
           const Example ex = make_example(exact_name);
-          check_example(ex, c, slots, common.final_time);
+          check_example(ex, c, common.final_time);
           c.exact = ex.exact;
-          for (unsigned int k = 0; k < c.data.size(); ++k)
-            c.data[k].initial_breakpoints = ex.exact->breakpoints(k, 0.);
+          for (unsigned int k = 0; k < c.input.data.size(); ++k)
+            c.input.data[k].initial_breakpoints = ex.exact->breakpoints(k, 0.);
         }
 
       c.cfl = common.convergence_cfl;
@@ -377,21 +279,20 @@ namespace granular_dg::network
         require(static_cast<bool>(c.exact), "Network/exact solution", "none",
                 "an exact solution: a convergence study measures errors");
       {
-        NetworkProblem probe(c.graph, c.disc, c.data, c.vertex_value, c.exact.get());
+        NetworkProblem probe(c.input.graph, c.disc, c.input.data, c.exact.get());
         require_reasonable_snapshot_count(common, probe.info().bytes_per_snapshot);
       }
       begin_output(common);
       if (common.convergence)
-        run_network_convergence(c.graph, c.data, c.disc, c.vertex_value, *c.exact, common,
-                                c.cfl);
+        run_network_convergence(c.input.graph, c.input.data, c.disc, *c.exact, common, c.cfl);
       else
-        run_network(c.graph, c.data, c.disc, c.vertex_value, c.exact.get(), common, true);
+        run_network(c.input.graph, c.input.data, c.disc, c.exact.get(), common, true);
     }
 
     const RegisterScene registration(dg::scene_entry<Case>(
       "network",
-      "scalar conservation laws u_t + f_k(u)_x = 0 on a star network with a vertex control "
-      "volume (linear, Burgers, traffic fluxes)",
+      "scalar conservation laws u_t + f_k(u)_x = 0 on a network of edges and vertex control "
+      "volumes (linear, Burgers, traffic fluxes)",
       numerical_flux_names.selection(), "", run));
   } // namespace
 } // namespace granular_dg::network

@@ -23,8 +23,9 @@ namespace granular_dg::network
       return {};
     }
 
+    /// the value of vertex v (the graph's numbering, from 0)
     virtual double
-    vertex_value(double t) const = 0;
+    vertex_value(unsigned int v, double t) const = 0;
 
     /// The solution is known on [0, valid_until()].
     virtual double

@@ -28,10 +28,25 @@
 
 namespace granular_dg::network
 {
-  /// What an example needs of an edge (checked against the prm).
+  /// What an example needs of an edge (checked against the prm): its
+  /// vertices (free_end: none) and flux.
   struct ExpectedEdge
   {
-    Direction    direction;
+    /// an edge of a star: in, out or loop at vertex 0
+    ExpectedEdge(const Direction d, const FluxFunction &f)
+      : flux(f)
+    {
+      Edge e;
+      e.meet(d);
+      from = e.from;
+      to   = e.to;
+    }
+    ExpectedEdge(const unsigned int from, const unsigned int to, const FluxFunction &f)
+      : from(from)
+      , to(to)
+      , flux(f)
+    {}
+    unsigned int from, to;
     FluxFunction flux;
   };
 
@@ -39,11 +54,13 @@ namespace granular_dg::network
   {
     std::string                    name;        ///< "example_7_3"
     std::string                    description; ///< one line
+    unsigned int                   n_vertices = 1;
     std::vector<ExpectedEdge>      edges;
     std::shared_ptr<ExactSolution> exact;
   };
 
-  /// "example_7_1" ... "example_7_5", "smooth_linear"
+  /// "example_7_1" ... "example_7_5", "smooth_linear", "two_stars",
+  /// "smooth_two_vertices"
   std::vector<std::string>
   example_names();
 

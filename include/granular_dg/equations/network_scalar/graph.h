@@ -1,25 +1,32 @@
 #pragma once
 
+#include <deal.II/base/numbers.h>
 #include <deal.II/base/point.h>
 
 #include <granular_dg/equations/network_scalar/system.h>
 
+#include <optional>
 #include <string>
 #include <vector>
 
 namespace granular_dg::network
 {
-  /// How an edge meets the vertex. Every edge runs from x = 0 to x = L in
-  /// its own coordinate: an ingoing edge ends at the vertex (x = L), an
-  /// outgoing one starts there (x = 0), a loop (roundabout) does both.
+  /// The end of an edge that meets no vertex (inflow data or outflow).
+  constexpr unsigned int free_end = numbers::invalid_unsigned_int;
+
+  /// How an edge meets one vertex (the star graph's words). Every edge runs
+  /// from x = 0 to x = L in its own coordinate: an ingoing edge ends at the
+  /// vertex (x = L), an outgoing one starts there (x = 0), a loop
+  /// (roundabout) does both, `apart` does neither.
   enum class Direction
   {
     in,
     out,
-    loop
+    loop,
+    apart
   };
 
-  /// The condition at the far end of an in/out edge (loops have none).
+  /// The condition at a free end of an edge.
   enum class FarEnd
   {
     dirichlet, ///< exterior state g(t): inflow data
@@ -29,8 +36,10 @@ namespace granular_dg::network
   struct Edge
   {
     std::string  label; ///< "Edge 3", for messages and output
-    Direction    direction = Direction::out;
-    double       length    = 1.;
+    /// the vertices at x = 0 and x = L (free_end: none)
+    unsigned int from   = free_end;
+    unsigned int to     = free_end;
+    double       length = 1.;
     FluxFunction flux;
     FarEnd       far_end = FarEnd::outflow;
 
@@ -38,11 +47,34 @@ namespace granular_dg::network
     bool
     vertex_at(const unsigned int boundary_id) const
     {
-      return direction == Direction::loop || (boundary_id == 1) == (direction == Direction::in);
+      return (boundary_id == 0 ? from : to) != free_end;
     }
+
+    /// How the edge meets vertex v.
+    Direction
+    direction(const unsigned int v) const
+    {
+      return from == v ? (to == v ? Direction::loop : Direction::out) :
+                         (to == v ? Direction::in : Direction::apart);
+    }
+
+    /// Attach the edge to vertex v of a star: in, out or loop.
+    void
+    meet(Direction d, unsigned int v = 0);
   };
 
-  /// One edge end at the vertex: the end x = L of an edge flowing in
+  struct Vertex
+  {
+    std::string label; ///< "Vertex 2", for messages and output
+    /// dx_0 = width_factor * (sum over the vertex's edge ends of h_k / 2)
+    double width_factor = 1.;
+    /// u_0 at t = 0 (none: the discrete stationary value of the edge traces)
+    std::optional<double> initial_value;
+    /// where the vertex is drawn (none: the scene places it)
+    std::optional<Point<2>> position;
+  };
+
+  /// One edge end at a vertex: the end x = L of an edge flowing in
   /// (incoming) or the end x = 0 of an edge flowing out.
   struct EdgeEnd
   {
@@ -50,21 +82,49 @@ namespace granular_dg::network
     bool         incoming;
   };
 
-  /// A star graph: edges meeting at one vertex.
+  /// A directed graph: edges between vertices or free ends. The paper's star
+  /// graph is the graph with one vertex.
   struct Graph
   {
-    std::vector<Edge> edges;
+    std::vector<Vertex> vertices;
+    std::vector<Edge>   edges;
 
-    /// The edge ends at the vertex (a loop gives two); their number is the
+    /// The edge ends at vertex v (a loop gives two); their number is the
     /// paper's N in the vertex width dx_0 = N dx / 2.
     std::vector<EdgeEnd>
-    vertex_ends() const;
+    vertex_ends(unsigned int v) const;
 
-    /// Where point x of edge k is drawn in the plane: ingoing edges on the
-    /// left, outgoing ones on the right, loops as petals through the vertex
-    /// (at the origin), above and below.
+    /// One vertex whose every edge has its other end free (the paper's
+    /// setting): its output keeps the paper's words in/out/loop.
+    bool
+    is_star() const;
+
+    /// Throws InputError naming the first edge or vertex that does not make
+    /// a graph: a dangling vertex reference, a vertex without edges, an
+    /// edge with length <= 0 or non-finite.
+    void
+    validate(const std::string &where) const;
+
+    /// "in" / "out" / "loop" on a star, else "vertex 1 -> vertex 2",
+    /// "free -> vertex 3", ...
+    std::string
+    describe(unsigned int edge) const;
+
+    /// Where point x of edge k is drawn in the plane. A star: ingoing edges
+    /// on the left, outgoing ones on the right, loops as petals through the
+    /// vertex (at the origin). Otherwise from the vertex positions (given,
+    /// or on a circle): straight edges between their vertices, free ends
+    /// pointing away from the centre of the drawing, loops as petals.
     Point<3>
     embed(unsigned int edge, double x) const;
+
+    /// Where vertex v is drawn.
+    Point<2>
+    position(unsigned int v) const;
+
+  private:
+    Point<3>
+    embed_star(unsigned int edge, double x) const;
   };
 
   std::string

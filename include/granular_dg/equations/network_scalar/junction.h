@@ -26,7 +26,8 @@ namespace granular_dg::network
   class Junction
   {
   public:
-    Junction(const Graph &graph, NumericalFlux type, double width);
+    /// The junction of vertex v of the graph.
+    Junction(const Graph &graph, unsigned int v, NumericalFlux type, double width);
 
     /// The edge ends, in the order of the traces passed below.
     const std::vector<EdgeEnd> &
@@ -62,8 +63,9 @@ namespace granular_dg::network
 
   private:
     std::vector<EdgeEnd>      end_list;
-    std::vector<FluxFunction> flux;
-    NumericalFlux         type;
+    std::vector<FluxFunction> flux; ///< of each end's edge
+    NumericalFlux             type;
     double                    dx0;
+    std::string               label; ///< "vertex" on a star, else "Vertex 3"
   };
 } // namespace granular_dg::network

@@ -28,12 +28,12 @@ namespace granular_dg::network
 {
   using EdgeLimiter = dg::ModalLimiter<1, System>;
 
-  /// The state of the network: one DG vector per edge and the vertex value.
-  /// Has what dg::SSPRK3 needs of a vector.
+  /// The state of the network: one DG vector per edge and the value of
+  /// every vertex. Has what dg::SSPRK3 needs of a vector.
   struct NetworkState
   {
     std::vector<dg::VectorType> edges;
-    double                      vertex = 0.;
+    std::vector<double>         vertices;
 
     void reinit(const NetworkState &other);
   };
@@ -59,9 +59,6 @@ namespace granular_dg::network
     double            indicator_threshold = 0.;
     /// 2^l at grid level l: an edge of length L gets round(L * this) cells
     double            cells_per_unit_length = 256;
-    /// dx_0 = factor * sum over the vertex ends of h_k / 2 (1: the paper's
-    /// N dx / 2; 0: a vertex without volume)
-    double            vertex_width_factor = 1.;
     Integrator        integrator          = Integrator::automatic;
     /// output: sample points per cell of the profiles (0: degree + 1, at
     /// least 2), and whether solution-NNNN.vtu are written
@@ -99,9 +96,10 @@ namespace granular_dg::network
   class NetworkProblem : public Evolution
   {
   public:
+    /// The vertices' widths and initial values are the graph's.
     NetworkProblem(const Graph &graph, const Discretisation &discretisation,
-                   std::vector<EdgeData> data, std::optional<double> vertex_value = {},
-                   const ExactSolution *exact = nullptr, const std::string &scene = "network");
+                   std::vector<EdgeData> data, const ExactSolution *exact = nullptr,
+                   const std::string &scene = "network");
     ~NetworkProblem() override;
 
     // ------------------------------------------------------------ Evolution
@@ -109,7 +107,7 @@ namespace granular_dg::network
     EvolutionInfo
     info() const override;
     /// Project the initial data (exact cell averages at degree 0), limit,
-    /// and set the vertex: the given value, or the discrete stationary one
+    /// and set every vertex: the given value, or the discrete stationary one
     /// for the initial edge traces.
     double
     initialize() override;
@@ -117,7 +115,7 @@ namespace granular_dg::network
     void
     check_initial_state(double t) override;
     /// The CFL step of the current state: cfl * min h / max |f'|, the
-    /// vertex value included (condition (4.7) for cfl <= 1/2).
+    /// vertex values included (condition (4.7) for cfl <= 1/2).
     double
     time_step(double t) override;
     /// One step of the integrator (limiter after every stage); throws
@@ -132,20 +130,20 @@ namespace granular_dg::network
     store(Slot slot) override;
     void
     restore(Slot slot) override;
-    /// solution-NNNN.vtu (the edges in the plane, the vertex at the origin)
-    /// and profile-NNNN-edge-K.csv
+    /// solution-NNNN.vtu (the edges and vertices in the plane) and
+    /// profile-NNNN-edge-K.csv
     SnapshotFiles
     write_snapshot(const std::string &directory, unsigned int index, double t) override;
-    /// mass, mass balance, inflow, vertex value, TV, Rankine-Hugoniot
-    /// residual (and the errors against an exact solution)
+    /// mass, mass balance, inflow, (first) vertex value, TV, largest
+    /// Rankine-Hugoniot residual (and the errors against an exact solution)
     std::vector<std::string>
     timeseries_names() const override;
     std::string
     timeseries_comment() const override;
     std::vector<double>
     timeseries_values(double t) override;
-    /// the modes of every edge, the vertex value, the far-end inflow and the
-    /// running diagnostics
+    /// the modes of every edge, the vertex values, the far-end inflow and
+    /// the running diagnostics
     void
     save(ByteWriter &w) override;
     void
@@ -171,24 +169,25 @@ namespace granular_dg::network
     unsigned int  n_stages() const;
     double        min_cell_size() const { return h_min; }
     const Graph  &graph() const { return net; }
-    const Junction &junction() const { return *vertex; }
-    double        vertex_value() const { return u.vertex; }
+    const Junction &junction(unsigned int v = 0) const { return junctions[v]; }
+    double        vertex_value(unsigned int v = 0) const { return u.vertices[v]; }
 
-    /// Total mass: integrals over the edges + dx_0 u_0.
+    /// Total mass: integrals over the edges + dx_0 u_0 of every vertex.
     double mass() const;
     /// int_0^t (inflow - outflow at the far ends) dt, as the integrator saw it.
     double boundary_inflow() const { return inflow; }
-    /// L1 norm of the cell averages and the vertex (the scale of the drift).
+    /// L1 norm of the cell averages and the vertices (the scale of the drift).
     double l1_norm() const;
-    /// Traces of the edges at the vertex ends (Junction::ends() order).
-    std::vector<double> vertex_traces(const NetworkState &state) const;
-    /// sum_in F - sum_out F at the vertex for the current state.
+    /// Traces of the edges at the ends of vertex v (Junction::ends() order).
+    std::vector<double> vertex_traces(const NetworkState &state, unsigned int v) const;
+    /// sum_in F - sum_out F for the current state at the vertex where it is
+    /// largest in magnitude (0 without vertices).
     double rh_residual() const;
     /// (4.4): TV of the cell averages along every edge plus the jumps
-    /// between the vertex and its neighbouring cells.
+    /// between each vertex and its neighbouring cells.
     double total_variation() const;
     NetworkErrors errors(const ExactSolution &exact, double t) const;
-    /// ||u - v||_L1 over edges and vertex (same mesh).
+    /// ||u - v||_L1 over edges and vertices (same mesh).
     double l1_distance(const NetworkProblem &other) const;
     const NetworkState &state() const { return u; }
 
@@ -217,26 +216,30 @@ namespace granular_dg::network
 
     /// evaluate() at xi = 0 (at_end false) or xi = 1 (at_end true)
     double end_value(unsigned int edge, unsigned int cell, bool at_end, const NetworkState &s) const;
-    /// the vertex rate and the far-end inflow of the stage at src (the
-    /// coupling part of a stage; sets the vertex value the edges see)
-    double couple(double t, const NetworkState &src) const;
+    /// the vertex rates and the far-end inflow of the stage at src (the
+    /// coupling part of a stage; sets the vertex values the edges see)
+    const std::vector<double> &couple(double t, const NetworkState &src) const;
+    /// the value the edges see at vertex v: u_0, or the balance of the
+    /// traces for a vertex without volume
+    double vertex_state(unsigned int v, const NetworkState &s, double t) const;
     double far_end_inflow(double time, const NetworkState &s) const;
     void   post_stage(NetworkState &s, double stage_time);
     /// Inadmissible unless s is finite (and, at degree 0, in the range of
     /// the step).
     void   post_stage_checks(const NetworkState &s, double stage_time);
-    /// Degree 0: the range [min, max] of the cell averages, the vertex value
-    /// and the far-end Dirichlet data of the step from t to t + dt.
+    /// Degree 0: the range [min, max] of the cell averages, the vertex values
+    /// and the free ends' Dirichlet data of the step from t to t + dt.
     std::pair<double, double> range_of_step(double t, double dt) const;
     /// Degree 0: Inadmissible unless every cell average of s lies in the
-    /// step's range (widened by the stage's vertex value).
+    /// step's range (widened by the stage's vertex values).
     void check_maximum_principle(const NetworkState &s, double stage_time);
+    /// where: an edge k >= 0 at x, or vertex -1 - k
     Inadmissible failure(double time, int edge, double x, double value,
                          const std::string &reason) const;
     double balance_residual() const;
     void   write_profiles(const std::string &directory, unsigned int index, double t) const;
     std::string write_vtu(const std::string &directory, unsigned int index, double t) const;
-    /// What a checkpoint holds (the modes of every edge, the vertex value,
+    /// What a checkpoint holds (the modes of every edge, the vertex values,
     /// the far-end inflow and the diagnostics), written and read alike.
     template <typename Archive>
     void
@@ -245,12 +248,11 @@ namespace granular_dg::network
     Graph                 net;
     Discretisation        disc;
     std::vector<EdgeData> data;
-    std::optional<double> initial_vertex_value;
     const ExactSolution  *exact;
     std::string           scene;
     std::vector<std::unique_ptr<EdgeDiscretisation>> edge;
-    std::unique_ptr<Junction>                        vertex;
-    std::shared_ptr<VertexData> vertex_data;
+    std::vector<Junction>                            junctions;
+    std::vector<std::shared_ptr<VertexData>>         vertex_data;
     NetworkState               u, last_good, benchmark_start;
     dg::SSPRK3<NetworkState>   rk3;
     double                     t = 0., inflow = 0., h_min = 0.;
@@ -260,6 +262,8 @@ namespace granular_dg::network
     std::pair<double, double>  bounds{-INFINITY, INFINITY};
     /// far-end inflow rate of each stage in the current step
     mutable std::vector<double> stage_inflow;
+    /// the vertex rates of the current stage
+    mutable std::vector<double> rates;
     StepPhases                 *phases = nullptr;
   };
 
@@ -267,8 +271,8 @@ namespace granular_dg::network
   /// plane, profile-NNNN-edge-K.csv, timeseries.csv, summary.json).
   RunResult
   run_network(const Graph &graph, const std::vector<EdgeData> &data,
-              const Discretisation &discretisation, std::optional<double> vertex_value,
-              const ExactSolution *exact, const RunParameters &params, bool write_files,
+              const Discretisation &discretisation, const ExactSolution *exact,
+              const RunParameters &params, bool write_files,
               const std::string &scene = "network");
 
   /// The study of Convergence/degrees x Convergence/cells (cells per unit
@@ -278,7 +282,6 @@ namespace granular_dg::network
   /// the CFL number of degree i of the list.
   void
   run_network_convergence(const Graph &graph, const std::vector<EdgeData> &data,
-                          const Discretisation &discretisation,
-                          std::optional<double> vertex_value, const ExactSolution &exact,
+                          const Discretisation &discretisation, const ExactSolution &exact,
                           const RunParameters &params, const std::vector<double> &cfl);
 } // namespace granular_dg::network

@@ -1,0 +1,16 @@
+#pragma once
+
+#include <string>
+
+namespace granular_dg
+{
+  /// Record the parameter file of this run (parse_parameters() does).
+  void
+  set_parameter_file(const std::string &filename);
+
+  /// A file named in the parameter file (a graph, a table): an absolute path
+  /// as it is, a relative one relative to the parameter file's directory, so
+  /// that a case and its data files move together.
+  std::string
+  resolve_input_path(const std::string &path);
+} // namespace granular_dg
