@@ -352,9 +352,9 @@ namespace granular_dg::network
                        const std::string &far_end_data)
   {
     EdgeData d;
-    d.initial = make_data(initial, at + "initial data", false);
+    d.initial = make_data(initial, at + "initial", false);
     if (e.far_end == FarEnd::dirichlet && (e.from == free_end || e.to == free_end))
-      d.far_end = make_data(far_end_data, at + "far end data", true);
+      d.far_end = make_data(far_end_data, at + "far_end_data", true);
     graph.edges.push_back(std::move(e));
     data.push_back(d);
     initial_text.push_back(initial);
@@ -399,8 +399,9 @@ namespace granular_dg::network
       {
         const std::string at = parameter + " '" + file + "', line " + std::to_string(line) + ": ";
         const long        id = vertex_id(table.get(row, "id"), at + "id");
-        require(edge_line.emplace(id, line).second, at + "id", id,
-                "a unique edge id (line " + std::to_string(edge_line[id]) + " has it too)");
+        const auto [first, unique] = edge_line.emplace(id, line);
+        require(unique, at + "id", id,
+                "a unique edge id (line " + std::to_string(first->second) + " has it too)");
         Edge e;
         e.label = "Edge " + std::to_string(id);
         auto reference = [&](const char *end, const unsigned int from) {
@@ -444,8 +445,9 @@ namespace granular_dg::network
         const double      x  = csv_number(table.get(row, "id"), at, "id");
         require(x == std::floor(x), at + "id", x, "an integer vertex id");
         const long id = static_cast<long>(x);
-        require(seen.emplace(id, line).second, at + "id", id,
-                "a unique vertex id (line " + std::to_string(seen[id]) + " has it too)");
+        const auto [first, unique] = seen.emplace(id, line);
+        require(unique, at + "id", id,
+                "a unique vertex id (line " + std::to_string(first->second) + " has it too)");
         auto it = index.find(id);
         if (it == index.end())
           {
@@ -472,6 +474,12 @@ namespace granular_dg::network
             value_given[it->second] = true;
           }
       }
+    // every vertex an edge names must be listed
+    for (unsigned int k = 0; k < graph.edges.size(); ++k)
+      for (const unsigned int v : {graph.edges[k].from, graph.edges[k].to})
+        if (v != free_end && !seen.count(vertex_ids[v]))
+          throw InputError(where[k] + graph.edges[k].label + " names " + graph.vertices[v].label +
+                           ", which " + parameter + " '" + file + "' does not list");
   }
 
   void
@@ -506,9 +514,14 @@ namespace granular_dg::network
             e.from = vertex_reference(from, at + "from", false, free_end);
             e.to   = vertex_reference(to, at + "to", true, e.from);
           }
-        for (const unsigned int v : {e.from, e.to})
+        for (const auto &[v, end] : {std::pair(e.from, "from"), std::pair(e.to, "to")})
           if (v != free_end)
-            n_vertices = std::max(n_vertices, v + 1);
+            {
+              require(v < max_vertex_sections, at + end, v + 1,
+                      "a vertex number up to " + std::to_string(max_vertex_sections) +
+                        " (Vertex N sections; use a Network/graph file for larger networks)");
+              n_vertices = std::max(n_vertices, v + 1);
+            }
         const std::string length = prm.get("length");
         e.length                 = prm.get_double("length");
         require(e.length > 0, at + "length", length, "must be > 0");
@@ -539,9 +552,6 @@ namespace granular_dg::network
           n_vertices = std::max(n_vertices, i + 1);
         prm.leave_subsection();
       }
-    require(n_vertices <= max_vertex_sections, "Network/Edge N/from, to", n_vertices,
-            "vertex numbers up to " + std::to_string(max_vertex_sections) +
-              " in Edge N sections (use a Network/graph file for larger networks)");
     for (unsigned int i = 0; i < n_vertices; ++i)
       {
         const std::string at = "Network/" + section("Vertex", i) + "/";
