@@ -47,7 +47,20 @@ CASES = {
     "column": ("prm/column_m1.5.prm", 1, ["Time stepping/skip tolerance=0"]),
     "hopper": ("prm/hopper_cone_30_24_p2.prm", 1, ["Hopper/cells=800"]),
     "network": ("prm/network_example_7_3.prm", 1, ["Limiter/scheme=componentwise"]),
+    # a road network of 10224 edges and 5041 junctions (a 71 x 71 city grid,
+    # contrib/make_network_grid.py, written into OUT_DIR by main()), 16 cells
+    # per edge: the per-edge overhead next to the star graph's
+    "network_grid": ("prm/network_city_grid.prm", 1, ["Network/edge profiles=none"]),
 }
+
+
+def make_network_grid(out):
+    """the 71 x 71 grid's CSV files in OUT_DIR, named in the case's overrides"""
+    edges = os.path.join(os.path.abspath(out), "grid71.csv")
+    vertices = os.path.join(os.path.abspath(out), "grid71_vertices.csv")
+    subprocess.run([sys.executable, os.path.join(HERE, "make_network_grid.py"), "71", edges, vertices],
+                   check=True, stdout=subprocess.DEVNULL)
+    CASES["network_grid"][2].extend(["Network/graph file=" + edges, "Network/vertex file=" + vertices])
 
 
 # the linear stability limits of SSP-RK3 + DG P_p that the program enforces
@@ -209,6 +222,8 @@ def main():
     a = ap.parse_args()
     os.makedirs(a.out, exist_ok=True)
     degrees = [int(x) for x in a.degrees.split(",")]
+    if "network_grid" in a.cases.split(","):
+        make_network_grid(a.out)
     rows = []
     for name in [c for c in a.cases.split(",") if c]:
         for p in degrees:

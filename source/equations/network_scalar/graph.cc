@@ -37,6 +37,20 @@ namespace granular_dg::network
     return ends;
   }
 
+  std::vector<std::vector<EdgeEnd>>
+  Graph::all_vertex_ends() const
+  {
+    std::vector<std::vector<EdgeEnd>> ends(vertices.size());
+    for (unsigned int k = 0; k < edges.size(); ++k)
+      {
+        if (edges[k].to != free_end)
+          ends[edges[k].to].push_back({k, true});
+        if (edges[k].from != free_end)
+          ends[edges[k].from].push_back({k, false});
+      }
+    return ends;
+  }
+
   bool
   Graph::is_star() const
   {
@@ -107,61 +121,110 @@ namespace granular_dg::network
     return Point<2>(r * std::cos(phi), r * std::sin(phi));
   }
 
-  Point<3>
-  Graph::embed(const unsigned int k, const double x) const
+  GraphDrawing::GraphDrawing(const Graph &graph)
+    : graph(graph)
+    , is_star(graph.is_star())
   {
-    if (is_star())
-      return embed_star(k, x);
-    const Edge  &e = edges[k];
+    const auto &edges = graph.edges;
+    for (unsigned int v = 0; v < graph.vertices.size(); ++v)
+      vertices.push_back(graph.position(v));
+    direction.resize(edges.size());
+    if (is_star)
+      return;
+    auto joins = [&](const Edge &e) {
+      return e.from != free_end && e.to != free_end && e.from != e.to;
+    };
+    // drawn length per unit edge length of the vertex-to-vertex edges
+    double       sum = 0;
+    unsigned int n   = 0;
+    for (const Edge &e : edges)
+      if (joins(e))
+        {
+          sum += vertices[e.from].distance(vertices[e.to]) / e.length;
+          ++n;
+        }
+    scale = n > 0 && sum > 0 ? sum / n : 1.;
+    Point<2> centre;
+    for (const auto &p : vertices)
+      centre += p / double(vertices.size());
+
+    // the directions of the edges at each vertex, then the free ends and loops
+    std::vector<std::vector<Tensor<1, 2>>> taken(vertices.size());
+    for (const Edge &e : edges)
+      if (joins(e))
+        {
+          const Tensor<1, 2> d = vertices[e.to] - vertices[e.from];
+          if (d.norm() > 0)
+            {
+              taken[e.from].push_back(d / d.norm());
+              taken[e.to].push_back(-d / d.norm());
+            }
+        }
+    const auto streets = taken;
+    for (unsigned int k = 0; k < edges.size(); ++k)
+      {
+        if (joins(edges[k]))
+          continue;
+        const unsigned int v = edges[k].from != free_end ? edges[k].from : edges[k].to;
+        if (v == free_end)
+          continue;
+        Tensor<1, 2> away = vertices[v] - centre;
+        away = away.norm() > 0 ? away / away.norm() : Tensor<1, 2>({1., 0.});
+        // the continuation of a street farthest (in angle) from every
+        // direction taken at v; away from the centre if none is 45 degrees clear
+        auto clearance = [&](const Tensor<1, 2> &c) {
+          double nearest = 2; // 1 - cos(angle) in [0, 2]
+          for (const auto &d : taken[v])
+            nearest = std::min(nearest, 1 - c * d);
+          return nearest;
+        };
+        double best  = -1;
+        direction[k] = away;
+        for (const auto &d : streets[v])
+          if (clearance(-d) > best + 1e-12)
+            {
+              best         = clearance(-d);
+              direction[k] = -d;
+            }
+        if (best < 1 - std::sqrt(0.5))
+          direction[k] = away;
+        taken[v].push_back(direction[k]);
+      }
+  }
+
+  Point<3>
+  GraphDrawing::operator()(const unsigned int k, const double x) const
+  {
+    if (is_star)
+      return star(k, x);
+    const Edge  &e = graph.edges[k];
     const double s = x / e.length;
     if (e.from != free_end && e.to != free_end && e.from != e.to)
       {
-        const Point<2> p = position(e.from) + s * (position(e.to) - position(e.from));
+        const Point<2> p = vertices[e.from] + s * (vertices[e.to] - vertices[e.from]);
         return Point<3>(p[0], p[1], 0.);
       }
-    // drawing scale: drawn length per unit edge length of the vertex-to-vertex edges
-    double scale = 0;
-    unsigned int n = 0;
-    for (const Edge &f : edges)
-      if (f.from != free_end && f.to != free_end && f.from != f.to)
-        {
-          scale += position(f.from).distance(position(f.to)) / f.length;
-          ++n;
-        }
-    scale = n > 0 ? scale / n : 1.;
     const unsigned int v = e.from != free_end ? e.from : e.to;
     if (v == free_end) // a line on its own, below the drawing
       return Point<3>(scale * x, -1. - k, 0.);
-    Point<2> centre;
-    for (unsigned int w = 0; w < vertices.size(); ++w)
-      centre += position(w) / double(vertices.size());
-    Tensor<1, 2> out = position(v) - centre;
-    const double norm = out.norm();
-    out = norm > 0 ? out / norm : Tensor<1, 2>({1., 0.});
-    // the free ends and loops at v, each turned 30 degrees from the previous one
-    unsigned int index = 0;
-    for (unsigned int j = 0; j < k; ++j)
-      index += (edges[j].from == v || edges[j].to == v) &&
-               (edges[j].from == free_end || edges[j].to == free_end || edges[j].from == edges[j].to);
-    const double turn = (index % 2 == 0 ? 1. : -1.) * ((index + 1) / 2) * numbers::PI / 6;
-    const double phi  = std::atan2(out[1], out[0]) + turn;
-    const Tensor<1, 2> d({std::cos(phi), std::sin(phi)});
-    if (e.from == e.to) // a loop: a petal around direction d
+    const Tensor<1, 2> &d = direction[k];
+    if (e.from == e.to) // a loop: a petal around d
       {
-        const double r = 0.5 * scale * e.length * std::sin(numbers::PI * s);
-        const double theta = phi - 0.4 + 0.8 * s;
-        const Point<2> p = position(v) + r * Tensor<1, 2>({std::cos(theta), std::sin(theta)});
+        const double   phi   = std::atan2(d[1], d[0]);
+        const double   r     = 0.5 * scale * e.length * std::sin(numbers::PI * s);
+        const double   theta = phi - 0.4 + 0.8 * s;
+        const Point<2> p = vertices[v] + r * Tensor<1, 2>({std::cos(theta), std::sin(theta)});
         return Point<3>(p[0], p[1], 0.);
       }
     // an outgoing free edge runs away from v, an incoming one towards it
-    const double dist = scale * (e.from == v ? x : e.length - x);
-    const Point<2> p  = position(v) + dist * d;
+    const Point<2> p = vertices[v] + scale * (e.from == v ? x : e.length - x) * d;
     return Point<3>(p[0], p[1], 0.);
   }
 
   Point<3>
-  Graph::embed_star(const unsigned int k, const double x) const
+  GraphDrawing::star(const unsigned int k, const double x) const
   {
+    const auto &edges = graph.edges;
     // spread the edges of a kind evenly over a sector
     const Direction dir   = edges[k].direction(0);
     unsigned int    index = 0, count = 0;
@@ -203,7 +266,12 @@ namespace granular_dg::network
 
   Junction::Junction(const Graph &graph, const unsigned int v, const NumericalFlux type,
                      const double width)
-    : end_list(graph.vertex_ends(v))
+    : Junction(graph, v, graph.vertex_ends(v), type, width)
+  {}
+
+  Junction::Junction(const Graph &graph, const unsigned int v, std::vector<EdgeEnd> ends,
+                     const NumericalFlux type, const double width)
+    : end_list(std::move(ends))
     , type(type)
     , dx0(width)
     , label(graph.is_star() ? "vertex" : graph.vertices[v].label)
@@ -228,10 +296,11 @@ namespace granular_dg::network
   double
   Junction::net_outflow(const std::vector<double> &traces, const double u0) const
   {
-    const auto F   = end_fluxes(traces, u0);
-    double     sum = 0;
+    // end_fluxes() summed without a vector (a stage calls this once per vertex)
+    double sum = 0;
     for (unsigned int i = 0; i < end_list.size(); ++i)
-      sum += end_list[i].incoming ? -F[i] : F[i];
+      sum += end_list[i].incoming ? -flux[i].numerical_flux(type, traces[i], u0) :
+                                    flux[i].numerical_flux(type, u0, traces[i]);
     return sum;
   }
 

@@ -39,7 +39,6 @@ namespace granular_dg::network
   struct NetworkProblem::EdgeDiscretisation
   {
     Triangulation<1>                  tria;
-    std::unique_ptr<FESystem<1>>      fe;
     DoFHandler<1>                     dof_handler;
     MappingQ1<1>                      mapping;
     std::unique_ptr<dg::Operator<1>>  op;
@@ -48,6 +47,8 @@ namespace granular_dg::network
     /// layout cell numbers in the order of increasing x
     std::vector<unsigned int> order;
     double                    h = 0;
+    /// the vector entries of the modes of the cells at x = 0 and x = L
+    std::array<std::vector<unsigned int>, 2> end_dofs;
 
     const dg::ModalLayout<1> &
     layout() const
@@ -149,6 +150,7 @@ namespace granular_dg::network
     , data(std::move(edge_data))
     , exact(exact)
     , scene(scene)
+    , fe(std::make_unique<FESystem<1>>(FE_DGQLegendre<1>(disc.degree), 1))
   {
     AssertThrow(data.size() == net.edges.size(), ExcMessage("one EdgeData per edge"));
     for (unsigned int v = 0; v < net.vertices.size(); ++v)
@@ -167,9 +169,8 @@ namespace granular_dg::network
                                                   Point<1>(0.), Point<1>(e.length), true);
         ed->h = e.length / n;
         h_min = std::min(h_min, ed->h);
-        ed->fe = std::make_unique<FESystem<1>>(FE_DGQLegendre<1>(disc.degree), 1);
         ed->dof_handler.reinit(ed->tria);
-        ed->dof_handler.distribute_dofs(*ed->fe);
+        ed->dof_handler.distribute_dofs(*fe);
 
         const auto   boundary =
           edge_boundary(e, data[k], {{vertex_function(e.from), vertex_function(e.to)}});
@@ -187,15 +188,27 @@ namespace granular_dg::network
         std::sort(ed->order.begin(), ed->order.end(), [&](unsigned int a, unsigned int b) {
           return layout.cell(a)->vertex(0)[0] < layout.cell(b)->vertex(0)[0];
         });
+        for (unsigned int m = 0; m <= disc.degree; ++m)
+          {
+            ed->end_dofs[0].push_back(layout.index(ed->first(), 0, m));
+            ed->end_dofs[1].push_back(layout.index(ed->last(), 0, m));
+          }
         edge.push_back(std::move(ed));
       }
 
+    for (unsigned int m = 0; m <= disc.degree; ++m)
+      {
+        end_values[0].push_back(edge.front()->layout().value_at_0(m));
+        end_values[1].push_back(edge.front()->layout().value_at_1(m));
+      }
+    auto ends = net.all_vertex_ends();
     for (unsigned int v = 0; v < net.vertices.size(); ++v)
       {
         double width = 0;
-        for (const auto &end : net.vertex_ends(v))
+        for (const auto &end : ends[v])
           width += 0.5 * edge[end.edge]->h;
-        junctions.emplace_back(net, v, disc.flux, net.vertices[v].width_factor * width);
+        junctions.emplace_back(net, v, std::move(ends[v]), disc.flux,
+                               net.vertices[v].width_factor * width);
       }
 
     u.vertices.assign(net.vertices.size(), 0.);
@@ -243,7 +256,9 @@ namespace granular_dg::network
     i.n_dofs   = n_dofs();
     i.h_min    = h_min;
     i.n_stages = n_stages();
-    i.snapshot_files = "solution.pvd, profile-NNNN-edge-K.csv";
+    i.snapshot_files = disc.profiles == Profiles::per_edge ? "solution.pvd, profile-NNNN-edge-K.csv" :
+                       disc.profiles == Profiles::one_file ? "solution.pvd, profile-NNNN.csv" :
+                                                             "solution.pvd";
     const std::string integrator = n_stages() == 1 ? "forward_euler" : "ssprk3";
     std::string vertices;
     if (net.is_star())
@@ -267,15 +282,14 @@ namespace granular_dg::network
   }
 
   double
-  NetworkProblem::end_value(const unsigned int k, const unsigned int c, const bool at_end,
-                            const NetworkState &s) const
+  NetworkProblem::trace(const unsigned int k, const bool at_end, const NetworkState &s) const
   {
-    const auto &layout = edge[k]->layout();
-    double      value  = 0;
-    for (unsigned int m = 0; m <= disc.degree; ++m)
-      value += s.edges[k].local_element(layout.index(c, 0, m)) *
-               (at_end ? layout.value_at_1(m) : layout.value_at_0(m));
-    return value;
+    const auto  &dofs  = edge[k]->end_dofs[at_end];
+    const double *value = at_end ? end_values[1].data() : end_values[0].data();
+    double        sum   = 0;
+    for (unsigned int m = 0; m < dofs.size(); ++m)
+      sum += s.edges[k].local_element(dofs[m]) * value[m];
+    return sum;
   }
 
   double
@@ -355,17 +369,13 @@ namespace granular_dg::network
       }
   }
 
-  std::vector<double>
+  const std::vector<double> &
   NetworkProblem::vertex_traces(const NetworkState &s, const unsigned int v) const
   {
-    std::vector<double> traces;
+    trace_buffer.clear();
     for (const auto &end : junctions[v].ends())
-      {
-        const auto &e = *edge[end.edge];
-        traces.push_back(end.incoming ? end_value(end.edge, e.last(), true, s) :
-                                        end_value(end.edge, e.first(), false, s));
-      }
-    return traces;
+      trace_buffer.push_back(trace(end.edge, end.incoming, s));
+    return trace_buffer;
   }
 
   double
@@ -381,16 +391,15 @@ namespace granular_dg::network
             if ((in ? e.from : e.to) != free_end)
               continue;
             const double x     = in ? 0. : e.length;
-            const double trace = in ? end_value(k, edge[k]->first(), false, s) :
-                                      end_value(k, edge[k]->last(), true, s);
-            double ghost = trace;
+            const double inside = trace(k, !in, s);
+            double       ghost  = inside;
             if (e.far_end == FarEnd::dirichlet)
               {
                 data[k].far_end->set_time(time);
                 ghost = data[k].far_end->value(Point<1>(x));
               }
-            sum += in ? e.flux.numerical_flux(disc.flux, ghost, trace) :
-                        -e.flux.numerical_flux(disc.flux, trace, ghost);
+            sum += in ? e.flux.numerical_flux(disc.flux, ghost, inside) :
+                        -e.flux.numerical_flux(disc.flux, inside, ghost);
           }
       }
     return sum;
@@ -409,7 +418,7 @@ namespace granular_dg::network
     rates.resize(junctions.size());
     for (unsigned int v = 0; v < junctions.size(); ++v)
       {
-        const auto   traces = vertex_traces(src, v);
+        const auto  &traces = vertex_traces(src, v);
         const double u0     = junctions[v].width() > 0 ? src.vertices[v] :
                                                          junctions[v].balance(traces, time);
         vertex_data[v]->u0  = u0;

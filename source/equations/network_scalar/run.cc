@@ -61,7 +61,8 @@ namespace granular_dg::network
   {
     const unsigned int per_cell = disc.profile_points > 0 ? std::max(2u, disc.profile_points) :
                                                             std::max(2u, disc.degree + 1);
-    const auto samples = sample(per_cell);
+    const auto         samples = sample(per_cell);
+    const GraphDrawing embed(net);
     std::vector<DataOutBase::Patch<1, 2>> patches;
     for (unsigned int k = 0; k < samples.size(); ++k)
       for (unsigned int c = 0; c * per_cell < samples[k].size(); ++c)
@@ -71,7 +72,7 @@ namespace granular_dg::network
           for (unsigned int j = 0; j < per_cell; ++j)
             {
               const auto &[x, value] = samples[k][c * per_cell + j];
-              const auto p           = net.embed(k, x);
+              const auto p           = embed(k, x);
               points.emplace_back(p[0], p[1]);
               values.push_back({{value, net.edges[k].flux.value(value), x, double(k + 1)}});
             }
@@ -80,7 +81,7 @@ namespace granular_dg::network
     // every vertex: a patch of length 0 with its value (edge number 0)
     for (unsigned int v = 0; v < net.vertices.size(); ++v)
       {
-        const Point<2> p = net.position(v);
+        const Point<2> &p = embed.vertex(v);
         patches.push_back(line_patch({p, p},
                                      {{{u.vertices[v], 0., 0., 0.}}, {{u.vertices[v], 0., 0., 0.}}},
                                      patches.size()));
@@ -101,6 +102,25 @@ namespace granular_dg::network
     const unsigned int points = disc.profile_points > 0 ? disc.profile_points :
                                                           std::max(2u, disc.degree + 1);
     const auto profile = sample(points);
+    if (disc.profiles == Profiles::one_file)
+      {
+        std::vector<std::string> header{"edge", "x", "u", "flux"};
+        if (exact)
+          header.push_back("exact");
+        CsvWriter csv;
+        csv.open(directory + "/" + snapshot_name("profile-", index, ".csv"), header,
+                 "time = " + format_number(time) + "\n# edge: the edge's place in the graph "
+                 "(1, 2, ...), x its coordinate");
+        for (unsigned int k = 0; k < net.edges.size(); ++k)
+          for (const auto &[x, value] : profile[k])
+            {
+              std::vector<double> row{double(k + 1), x, value, net.edges[k].flux.value(value)};
+              if (exact)
+                row.push_back(exact->value(k, x, time));
+              csv.row(row);
+            }
+        return;
+      }
     for (unsigned int k = 0; k < net.edges.size(); ++k)
       {
         const Edge              &e = net.edges[k];
@@ -137,7 +157,8 @@ namespace granular_dg::network
     SnapshotFiles files;
     if (disc.write_vtu)
       files.pvd_entry = files.main_file = write_vtu(directory, index, time);
-    write_profiles(directory, index, time);
+    if (disc.profiles != Profiles::none)
+      write_profiles(directory, index, time);
     if (files.main_file.empty())
       files.main_file = "profile files";
     return files;

@@ -28,6 +28,9 @@ namespace granular_dg::network
     const EnumNames<FluxLaw> law_names({{FluxLaw::linear, "linear"},
                                         {FluxLaw::burgers, "burgers"},
                                         {FluxLaw::traffic, "traffic"}});
+    const EnumNames<Profiles>   profile_names({{Profiles::per_edge, "per_edge"},
+                                               {Profiles::one_file, "one_file"},
+                                               {Profiles::none, "none"}});
     const EnumNames<Integrator> integrator_names({{Integrator::automatic, "auto"},
                                                   {Integrator::forward_euler, "forward_euler"},
                                                   {Integrator::ssprk3, "ssprk3"}});
@@ -86,6 +89,10 @@ namespace granular_dg::network
                         "otherwise): 'stationary' (the discrete stationary value c_0 of the "
                         "initial edge traces, Definition 4.4) or a constant expression, "
                         "e.g. sqrt(2/3).");
+      prm.declare_entry("edge profiles", "per_edge", profile_names.pattern(),
+                        "What a snapshot writes besides solution-NNNN.vtu: per_edge "
+                        "(profile-NNNN-edge-K.csv, one file per edge), one_file "
+                        "(profile-NNNN.csv with an edge column: for large networks) or none.");
       prm.declare_entry("exact solution", "none", Patterns::Selection(exact_choices()),
                         "Exact solution for the error measurement (L1 over all edges and "
                         "the vertex cell): none, initial_data (the data are a stationary "
@@ -234,6 +241,7 @@ namespace granular_dg::network
 
       prm.enter_subsection("Network");
       c.disc.cells_per_unit_length = prm.get_integer("cells per unit length");
+      c.disc.profiles = profile_names.parse("Network/edge profiles", prm.get("edge profiles"));
       const std::string exact_name = prm.get("exact solution");
       c.input.parse(prm);
       prm.leave_subsection();

@@ -94,6 +94,10 @@ namespace granular_dg::network
     std::vector<EdgeEnd>
     vertex_ends(unsigned int v) const;
 
+    /// vertex_ends(v) of every vertex, in one pass over the edges
+    std::vector<std::vector<EdgeEnd>>
+    all_vertex_ends() const;
+
     /// One vertex whose every edge has its other end free (the paper's
     /// setting): its output keeps the paper's words in/out/loop.
     bool
@@ -110,21 +114,49 @@ namespace granular_dg::network
     std::string
     describe(unsigned int edge) const;
 
-    /// Where point x of edge k is drawn in the plane. A star: ingoing edges
-    /// on the left, outgoing ones on the right, loops as petals through the
-    /// vertex (at the origin). Otherwise from the vertex positions (given,
-    /// or on a circle): straight edges between their vertices, free ends
-    /// pointing away from the centre of the drawing, loops as petals.
-    Point<3>
-    embed(unsigned int edge, double x) const;
-
-    /// Where vertex v is drawn.
+    /// Where vertex v is drawn: its position, or (a graph without
+    /// positions) on a circle, the star's vertex at the origin.
     Point<2>
     position(unsigned int v) const;
+  };
+
+  /**
+   * Where the network is drawn in the plane (solution-NNNN.vtu), computed once
+   * for the graph. A star: ingoing edges on the left, outgoing ones on the
+   * right, loops as petals through the vertex at the origin. Any other graph:
+   * edges between two vertices straight from one to the other; an edge with a
+   * free end leaves its vertex in the direction opposite to one of the
+   * vertex's other edges, the one farthest from the directions already taken
+   * there (a road continues the street it ends; the away-from-the-centre
+   * direction when the vertex has no other edges); loops as petals. A free
+   * edge is drawn with the mean drawn length per unit length of the
+   * vertex-to-vertex edges.
+   */
+  class GraphDrawing
+  {
+  public:
+    explicit GraphDrawing(const Graph &graph);
+
+    /// where point x of edge k is drawn
+    Point<3>
+    operator()(unsigned int edge, double x) const;
+
+    const Point<2> &
+    vertex(const unsigned int v) const
+    {
+      return vertices[v];
+    }
 
   private:
     Point<3>
-    embed_star(unsigned int edge, double x) const;
+    star(unsigned int edge, double x) const;
+
+    const Graph             &graph;
+    bool                     is_star;
+    double                   scale = 1.;
+    std::vector<Point<2>>    vertices;
+    /// per edge with a free end or a loop: the unit direction it is drawn in
+    std::vector<Tensor<1, 2>> direction;
   };
 
   std::string

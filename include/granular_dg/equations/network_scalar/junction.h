@@ -28,6 +28,9 @@ namespace granular_dg::network
   public:
     /// The junction of vertex v of the graph.
     Junction(const Graph &graph, unsigned int v, NumericalFlux type, double width);
+    /// ... with the vertex's ends (graph.vertex_ends(v)) given
+    Junction(const Graph &graph, unsigned int v, std::vector<EdgeEnd> ends, NumericalFlux type,
+             double width);
 
     /// The edge ends, in the order of the traces passed below.
     const std::vector<EdgeEnd> &

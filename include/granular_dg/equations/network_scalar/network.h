@@ -45,6 +45,14 @@ namespace granular_dg::network
     ssprk3
   };
 
+  /// What a snapshot writes besides solution-NNNN.vtu.
+  enum class Profiles
+  {
+    per_edge, ///< profile-NNNN-edge-K.csv, one per edge
+    one_file, ///< profile-NNNN.csv with an edge column
+    none
+  };
+
   /// The numerical method on the network.
   struct Discretisation
   {
@@ -64,6 +72,7 @@ namespace granular_dg::network
     /// least 2), and whether solution-NNNN.vtu are written
     unsigned int      profile_points = 0;
     bool              write_vtu      = true;
+    Profiles          profiles       = Profiles::per_edge;
   };
 
   /// Data of one edge: initial data u(x) and, for a Dirichlet far end, g(t)
@@ -178,8 +187,9 @@ namespace granular_dg::network
     double boundary_inflow() const { return inflow; }
     /// L1 norm of the cell averages and the vertices (the scale of the drift).
     double l1_norm() const;
-    /// Traces of the edges at the ends of vertex v (Junction::ends() order).
-    std::vector<double> vertex_traces(const NetworkState &state, unsigned int v) const;
+    /// Traces of the edges at the ends of vertex v (Junction::ends() order;
+    /// valid until the next call).
+    const std::vector<double> &vertex_traces(const NetworkState &state, unsigned int v) const;
     /// sum_in F - sum_out F for the current state at the vertex where it is
     /// largest in magnitude (0 without vertices).
     double rh_residual() const;
@@ -214,8 +224,8 @@ namespace granular_dg::network
     struct EdgeDiscretisation;
     class VertexData;
 
-    /// evaluate() at xi = 0 (at_end false) or xi = 1 (at_end true)
-    double end_value(unsigned int edge, unsigned int cell, bool at_end, const NetworkState &s) const;
+    /// the trace of edge k at x = 0 (at_end false) or x = L (at_end true)
+    double trace(unsigned int edge, bool at_end, const NetworkState &s) const;
     /// the vertex rates and the far-end inflow of the stage at src (the
     /// coupling part of a stage; sets the vertex values the edges see)
     const std::vector<double> &couple(double t, const NetworkState &src) const;
@@ -250,7 +260,12 @@ namespace granular_dg::network
     std::vector<EdgeData> data;
     const ExactSolution  *exact;
     std::string           scene;
+    /// one finite element for all edges
+    std::unique_ptr<FESystem<1>>                     fe;
     std::vector<std::unique_ptr<EdgeDiscretisation>> edge;
+    /// the Legendre modes' values at xi = 0 and xi = 1
+    std::array<std::vector<double>, 2>               end_values;
+    mutable std::vector<double>                      trace_buffer;
     std::vector<Junction>                            junctions;
     std::vector<std::shared_ptr<VertexData>>         vertex_data;
     NetworkState               u, last_good, benchmark_start;
