@@ -92,3 +92,13 @@ granular_dg_test(checkpoint/bad_resume EXE ${TEST_PYTHON}
   ARGS ${CMAKE_CURRENT_SOURCE_DIR}/checkpoint/bad_resume.py $<TARGET_FILE:granular_dg>
        ${CMAKE_CURRENT_SOURCE_DIR}/input/base.prm ${CMAKE_CURRENT_SOURCE_DIR}/column/m15_t20.prm
   COMPARE stdout KEEP_OUTPUT NUMDIFF -a 0 -r 0)
+
+# A general graph (the shipped city grid from CSV files: 84 roads, 36
+# junctions, every vertex value in the checkpoint), stopped and resumed, and
+# killed at random and resumed: bitwise equal to the uninterrupted run.
+set(city_options --set "Network/cells per unit length=8" --set "Time stepping/final time=3"
+  --set "Output/output times=1, 2, 3" --set "Network/edge profiles=one_file")
+checkpoint_test(network_graph_stop_resume ../prm/network_city_grid.prm stop:250
+  OPTIONS --every 100 ${city_options})
+checkpoint_test(network_graph_kill ../prm/network_city_grid.prm kill
+  OPTIONS --every 50 ${city_options})

@@ -823,6 +823,16 @@ namespace granular_dg::network
   void
   NetworkProblem::state_io(Archive &ar)
   {
+    // the graph's size first: a graph file changed since the checkpoint
+    // (the parameters name the file, not its content) is refused
+    std::uint64_t n_vertices = u.vertices.size(), n_edges = u.edges.size();
+    ar.io(n_vertices);
+    ar.io(n_edges);
+    if (n_vertices != u.vertices.size() || n_edges != u.edges.size())
+      throw RunError("the checkpoint's network has " + std::to_string(n_vertices) +
+                     " vertices and " + std::to_string(n_edges) + " edges, this one " +
+                     std::to_string(u.vertices.size()) + " and " +
+                     std::to_string(u.edges.size()));
     ar.io(inflow);
     for (double &v : u.vertices)
       ar.io(v);
