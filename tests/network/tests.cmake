@@ -185,6 +185,8 @@ foreach(bad missing_vertex isolated_vertex)
     COPY network/ring.csv network/ring_${bad}.csv
     ARGS --set "Network/vertex file=ring_${bad}.csv" EXIT 2 KEEP_OUTPUT)
 endforeach()
+granular_dg_test(network/graph_file_and_vertex_section PRM network/ring.prm ${ring_files}
+  ARGS --set "Network/Vertex 2/width factor=0" EXIT 2 KEEP_OUTPUT)
 granular_dg_test(network/edge_self_loop PRM ../prm/network_two_stars.prm
   ARGS --set "Network/Edge 3/to=1" EXIT 2 KEEP_OUTPUT)
 granular_dg_test(network/edge_direction_and_from PRM ../prm/network_two_stars.prm

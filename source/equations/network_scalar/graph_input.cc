@@ -330,6 +330,18 @@ namespace granular_dg::network
             require(!used, "Network/" + section("Edge", i) + "/from", "(set)",
                     "no Edge N sections with a Network/graph file: give the edges in one place");
           }
+        for (unsigned int i = 0; i < max_vertex_sections; ++i)
+          {
+            prm.enter_subsection(section("Vertex", i));
+            for (const auto &[entry, unset] : {std::pair<std::string, std::string>{"width factor", "default"},
+                                               {"initial value", "default"},
+                                               {"position", ""}})
+              require(prm.get(entry) == unset, "Network/" + section("Vertex", i) + "/" + entry,
+                      prm.get(entry),
+                      "unset with a Network/graph file: give the vertices' data in "
+                      "Network/vertex file");
+            prm.leave_subsection();
+          }
         read_edge_file("Network/graph file", edge_file);
         if (!vertex_file.empty())
           read_vertex_file("Network/vertex file", vertex_file);
