@@ -4,11 +4,13 @@ at degrees 1-4, and of deal.II's step-67 (Euler, MatrixFree) built from
 Debian's libdeal.ii-doc examples as the comparator. doc/performance.md.
 
     /usr/bin/python3 contrib/benchmark.py BUILD_DIR OUT_DIR [--quick] [--no-step67]
-        [--degrees 1,2,3,4] [--cases name,...] [--mpi]
+        [--degrees 1,2,3,4] [--cases name,...] [--mpi] [--step67-dims 2,1]
 
 OUT_DIR gets throughput.csv and throughput.md (the table of doc/performance.md)
 and one directory per run with its benchmark.json. step-67 is copied into
-BUILD_DIR/step67-<dim>d-p<k>/ (never into the repository), its constants
+BUILD_DIR/step67-<dim>d-p<k>/ (never into the repository; in 1D its testcase 0,
+the 2D vortex, is replaced by a smooth entropy wave with inflow data on both
+ends, and the Triangulation is serial), its constants
 patched by sed (dimension, degree, refinements, a fixed number of time steps,
 CPU + wall timers, no VTU output), built in Release and run; its throughput is
 n_dofs * 5 stages * steps / CPU time of "rk time stepping total".
@@ -133,8 +135,23 @@ def patch_step67(src, dim, degree, refinements, steps):
              ' << " stages " << integrator.n_stages() << " cpu " << timer.get_summary_data('
              'TimerOutput::total_cpu_time)["rk time stepping total"] << " wall " << '
              'timer.get_summary_data(TimerOutput::total_wall_time)["rk time stepping total"] << std::endl;')]
-    if dim == 1:  # p4est has no 1D: a serial Triangulation<1>
-        subs.append((r"#ifdef DEAL_II_WITH_P4EST", "#if 0"))
+    if dim == 1:
+        # p4est has no 1D: a serial Triangulation<1>. Testcase 0 (the vortex)
+        # is 2D only: in 1D a smooth entropy wave on [0, 10], rho = 1 +
+        # sin(2 pi (x - t)/10)/2, u = 1, p = 1 (exact for Euler), as initial
+        # and inflow data on both ends (boundary ids 0 and 1)
+        subs += [(r"#ifdef DEAL_II_WITH_P4EST", "#if 0"),
+                 (r"            Assert\(dim == 2, ExcNotImplemented\(\)\);",
+                  "            if (dim == 1)\n"
+                  "              {\n"
+                  "                const double rho = 1. + 0.5 * std::sin(2. * numbers::PI * (x[0] - t) / 10.);\n"
+                  "                return component == 0 ? rho : component == 1 ? rho :\n"
+                  "                       1. / (gamma - 1.) + 0.5 * rho;\n"
+                  "              }"),
+                 (r"            euler_operator\.set_inflow_boundary\(\n              0, std::make_unique<ExactSolution<dim>>\(0\)\);(?=\n\n            break;)",
+                  "            euler_operator.set_inflow_boundary(\n              0, std::make_unique<ExactSolution<dim>>(0));\n"
+                  "            if (dim == 1)\n"
+                  "              euler_operator.set_inflow_boundary(1, std::make_unique<ExactSolution<dim>>(0));")]
     for a, b in subs:
         s, n = re.subn(a, b, s)
         if n == 0:
@@ -172,7 +189,7 @@ def run_step67(build, dim, degree, refinements, steps, reuse=False):
             best = (n_dofs, n_steps, stages, cpu, wall)
     n_dofs, n_steps, stages, cpu, wall = best
     rate = n_dofs * stages * n_steps / cpu / 1e6
-    r = {"code": "step-67", "case": "euler_vortex_%dd" % dim, "dim": dim, "degree": degree, "ranks": 1,
+    r = {"code": "step-67", "case": "euler_entropy_wave_1d" if dim == 1 else "euler_vortex_2d", "dim": dim, "degree": degree, "ranks": 1,
             "engine": "matrix_free", "n_dofs": n_dofs, "steps": n_steps,
             "cpu_us_per_step": 1e6 * cpu / n_steps, "mdofs_step": rate, "mdofs_rk": rate,
             "mdofs_wall": n_dofs * stages * n_steps / wall / 1e6,
@@ -183,7 +200,8 @@ def run_step67(build, dim, degree, refinements, steps, reuse=False):
 
 
 FIELDS = ["code", "case", "dim", "degree", "ranks", "engine", "n_dofs", "steps", "cpu_us_per_step",
-          "mdofs_step", "mdofs_rk", "mdofs_wall", "ratio_to_step67", "load_before", "load_after"]
+          "mdofs_step", "mdofs_rk", "mdofs_wall", "ratio_to_step67", "step_ratio_to_step67",
+          "load_before", "load_after"]
 
 
 def write_tables(out, rows):
@@ -191,6 +209,9 @@ def write_tables(out, rows):
     for r in rows:
         ref = s67.get((r["dim"], r["degree"]))
         r["ratio_to_step67"] = r["mdofs_rk"] / ref if ref and r["code"] != "step-67" else ""
+        # the whole step (limiter, admissibility, time step included) against
+        # step-67's RK, which is its whole step
+        r["step_ratio_to_step67"] = r["mdofs_step"] / ref if ref and r["code"] != "step-67" else ""
     with open(os.path.join(out, "throughput.csv"), "w") as f:
         w = csv.DictWriter(f, fieldnames=FIELDS)
         w.writeheader()
@@ -198,14 +219,14 @@ def write_tables(out, rows):
             w.writerow({k: ("%.4g" % v if isinstance(v, float) else v) for k, v in r.items()})
     with open(os.path.join(out, "throughput.md"), "w") as f:
         f.write("| code | case | dim | p | ranks | engine | DoFs | CPU us/step | MDoF/s/core step "
-                "| MDoF/s/core RK | MDoF/s wall | / step-67 | load before -> after |\n")
-        f.write("|" + "---|" * 13 + "\n")
+                "| MDoF/s/core RK | MDoF/s wall | RK / step-67 | step / step-67 | load before -> after |\n")
+        f.write("|" + "---|" * 14 + "\n")
         for r in rows:
-            ratio = r["ratio_to_step67"]
-            f.write("| %s | %s | %d | %d | %d | %s | %d | %.1f | %.1f | %.1f | %.1f | %s | %s -> %s |\n" % (
+            ratios = ["%.2f" % r[k] if r[k] != "" else "" for k in ("ratio_to_step67", "step_ratio_to_step67")]
+            f.write("| %s | %s | %d | %d | %d | %s | %d | %.1f | %.1f | %.1f | %.1f | %s | %s | %s -> %s |\n" % (
                 r["code"], r["case"], r["dim"], r["degree"], r["ranks"], r["engine"], r["n_dofs"],
                 r["cpu_us_per_step"], r["mdofs_step"], r["mdofs_rk"], r["mdofs_wall"],
-                "%.2f" % ratio if ratio != "" else "", r["load_before"], r["load_after"]))
+                ratios[0], ratios[1], r["load_before"], r["load_after"]))
 
 
 def main():
@@ -216,6 +237,8 @@ def main():
     ap.add_argument("--no-step67", action="store_true")
     ap.add_argument("--degrees", default="1,2,3,4")
     ap.add_argument("--step67-degrees", default="1,2,3,4")
+    ap.add_argument("--step67-dims", default="2,1",
+                    help="2: the vortex on 128^2 cells; 1: a smooth entropy wave on 1024 cells")
     ap.add_argument("--cases", default=",".join(CASES))
     ap.add_argument("--mpi", action="store_true", help="also layered_2d on 2 ranks (p = 2, 3)")
     ap.add_argument("--reuse", action="store_true", help="take runs with a result already there")
@@ -240,12 +263,17 @@ def main():
                 print(r, flush=True)
     if not a.no_step67:
         # 2D: [0,10] x [-5,5], 4 x 2^refinements cells per direction: 128^2
-        # cells, as many DoFs as the 2D strip (0.3-1.2 M)
-        for p in [int(x) for x in a.step67_degrees.split(",")]:
-            r = run_step67(a.build, 2, p, 5, 20 if a.quick else 60, reuse=a.reuse)
-            rows.append(r)
-            print(r, flush=True)
-            write_tables(a.out, rows)
+        # cells, as many DoFs as the 2D strip (0.3-1.2 M); 1D: [0, 10],
+        # 4 x 2^8 = 1024 cells (the 1D cases have 1200-1600)
+        for dim in [int(x) for x in a.step67_dims.split(",")]:
+            for p in [int(x) for x in a.step67_degrees.split(",")]:
+                if dim == 2:
+                    r = run_step67(a.build, 2, p, 5, 20 if a.quick else 60, reuse=a.reuse)
+                else:
+                    r = run_step67(a.build, 1, p, 8, 100 if a.quick else 1000, reuse=a.reuse)
+                rows.append(r)
+                print(r, flush=True)
+                write_tables(a.out, rows)
     write_tables(a.out, rows)
 
 
