@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <regex>
@@ -255,6 +256,16 @@ namespace granular_dg
                             }),
                 times.end());
     return times;
+  }
+
+  double
+  peak_resident_bytes()
+  {
+    std::ifstream status("/proc/self/status");
+    for (std::string line; std::getline(status, line);)
+      if (line.rfind("VmHWM:", 0) == 0)
+        return 1024. * std::atof(line.c_str() + 6);
+    return 0.;
   }
 
   double

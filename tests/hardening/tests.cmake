@@ -82,3 +82,14 @@ granular_dg_test(hardening/no_sliver_steps PRM ../prm/column_vertical.prm
 # varies between runs: -r 1 on the numbers, the words compared as they are.
 granular_dg_test(hardening/memory_does_not_fit PRM hardening/memory_does_not_fit.prm EXIT 2
   KEEP_OUTPUT NUMDIFF -a 0 -r 1)
+
+# The memory report (summary.json diagnostics/memory, issue 19): the state
+# vectors each hold 8 bytes per DoF (the solution, SSP-RK3's stage vector, the
+# last good state), measured with deal.II's memory_consumption() on the 2D
+# strip (432000 DoFs, 2 steps); 1e-3 relative (the vectors' fixed overhead is
+# 1e-4 of them).
+granular_dg_test(hardening/memory_report PRM ../prm/layered_2d.prm
+  ARGS --set "Time stepping/final time=0.003" --set "Output/output times=0.003"
+       --set "Output/write vtu=false"
+  COMPARE summary.json:diagnostics/memory/solution_bytes_per_dof,diagnostics/memory/rk_stages_bytes_per_dof,diagnostics/memory/last_good_bytes_per_dof
+  NUMDIFF -r 1e-3 -a 0)

@@ -86,6 +86,11 @@ namespace granular_dg
   double
   available_memory_per_rank();
 
+  /// The peak resident set size of this process (VmHWM of
+  /// /proc/self/status) in bytes, 0 if it cannot be read.
+  double
+  peak_resident_bytes();
+
   /// Create (or, with Output/overwrite, clear) the output directory and write
   /// parameters.prm, the parameters actually used. Call after all input has
   /// been validated, so that bad input leaves nothing behind. With

@@ -134,6 +134,14 @@ namespace granular_dg::dg
       return "matrix_free";
     }
 
+    std::size_t
+    engine_memory() const override
+    {
+      const auto n = [](const auto &v) { return v.capacity() * sizeof(v[0]); };
+      return data.memory_consumption() + inverse_mass_diagonal.memory_consumption() +
+             n(cell_coefficients) + n(face_coefficients_m) + n(face_coefficients_p);
+    }
+
     void
     reinit(const Mapping<dim> &mapping, const DoFHandler<dim> &dof_handler) override;
 

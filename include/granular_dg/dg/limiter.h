@@ -188,6 +188,16 @@ namespace granular_dg::dg
       return cells;
     }
 
+    /// bytes of the cell and face tables, the ghosted copy and the flags
+    std::size_t
+    memory_consumption() const
+    {
+      return cells.memory_consumption() + coefficients.capacity() * sizeof(coefficients[0]) +
+             faces.capacity() * sizeof(Face) + base.capacity() * sizeof(std::size_t) +
+             troubled.capacity() + kxrcf_flags.capacity() +
+             limiting_values.capacity() * sizeof(State);
+    }
+
   private:
     using State = Tensor<1, n_components>;
 

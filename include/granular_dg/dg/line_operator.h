@@ -90,6 +90,14 @@ namespace granular_dg::dg
       return "line";
     }
 
+    std::size_t
+    engine_memory() const override
+    {
+      const auto n = [](const auto &v) { return v.capacity() * sizeof(v[0]); };
+      return layout.memory_consumption() + n(h) + n(x_left) + n(coefficients) + n(cell_speed) +
+             n(source_points);
+    }
+
     void
     reinit(const Mapping<1> &, const DoFHandler<1> &dof_handler) override
     {

@@ -148,6 +148,17 @@ namespace granular_dg::dg
       return value(u, c, i, {{L.data()}});
     }
 
+    /// bytes of the tables and of the ghosted copy (with_ghosts())
+    std::size_t
+    memory_consumption() const
+    {
+      return cells.capacity() * sizeof(cells[0]) + dof_index.capacity() * sizeof(dof_index[0]) +
+             neighbors.capacity() * sizeof(int) +
+             boundary_ids.capacity() * sizeof(types::boundary_id) +
+             (extents.capacity() + at_1.capacity() + at_0.capacity()) * sizeof(double) +
+             ghosted.memory_consumption();
+    }
+
   private:
     unsigned int n_comp = 1, n_modes_1d = 1, n_modes_cell = 1, n_owned_cells = 0;
     std::array<unsigned int, dim>                               strides;

@@ -101,6 +101,19 @@ namespace granular_dg::dg
     virtual std::string
     engine_name() const = 0;
 
+    /// Bytes this operator holds on this rank: the engine's data
+    /// (MatrixFree's memory_consumption(), or the line engine's tables) and
+    /// the scratch vector of apply_stage().
+    std::size_t
+    memory_consumption() const
+    {
+      return engine_memory() + rate.memory_consumption();
+    }
+
+    /// the engine's part of memory_consumption()
+    virtual std::size_t
+    engine_memory() const = 0;
+
     /// Compute only the cells of active's current step from now on (null:
     /// all cells again): apply, apply_stage and the admissibility scan work
     /// on those; apply_stage sets a destination's values of the cells just

@@ -106,6 +106,13 @@ namespace granular_dg::dg
     write_hdf5(const std::string &directory, const std::string &name, double t) const;
     std::string
     write_profile(const std::string &directory, unsigned int index, double t) const;
+    /// Bytes per owned DoF of the solution, Runge-Kutta stages, last-good
+    /// and benchmark copies, operator (MatrixFree data), limiter (with its
+    /// ghosted copy), DoFHandler and triangulation, their sum and the peak
+    /// resident set size (summary.json diagnostics/memory; printed with
+    /// print); the largest over the ranks.
+    JsonObject
+    memory_report(bool print) const;
     void
     write_modes(const std::string &directory, unsigned int index, double t) const;
 

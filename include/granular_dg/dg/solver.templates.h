@@ -9,6 +9,7 @@
 #include <deal.II/numerics/data_postprocessor.h>
 
 #include <granular_dg/base/errors.h>
+#include <granular_dg/base/run_parameters.h>
 #include <granular_dg/base/time_loop.h>
 #include <granular_dg/dg/dg_operator.h>
 #include <granular_dg/dg/line_operator.h>
@@ -485,7 +486,55 @@ namespace granular_dg::dg
       }
     if (active)
       result.diagnostics.add("skipped_cell_updates", active->skipped_fraction());
+    result.diagnostics.add_object("memory", memory_report(write_files));
     hooks.finish(solution, t, result.diagnostics, directory, write_files);
+  }
+
+  template <int dim, typename Physics>
+  JsonObject
+  Solver<dim, Physics>::memory_report(const bool print) const
+  {
+    // bytes on this rank per owned DoF, by what holds them; the largest over
+    // the ranks of each
+    const std::vector<std::pair<std::string, std::size_t>> parts = {
+      {"solution", solution.memory_consumption()},
+      {"rk_stages", integrator.memory_consumption() +
+                      (low_storage ? low_storage->memory_consumption() : 0)},
+      {"last_good", last_good.memory_consumption()},
+      {"benchmark_copy", benchmark_start.memory_consumption()},
+      {"operator", op->memory_consumption()},
+      {"limiter", limiter.memory_consumption()},
+      {"dof_handler", dof_handler.memory_consumption()},
+      {"triangulation", scene.triangulation->memory_consumption()}};
+    const MPI_Comm      comm = solution.get_mpi_communicator();
+    const double        dofs = std::max<double>(1., solution.locally_owned_size());
+    std::vector<double> per_dof;
+    double              accounted = 0;
+    for (const auto &[name, bytes] : parts)
+      {
+        per_dof.push_back(bytes / dofs);
+        accounted += bytes / dofs;
+      }
+    per_dof.push_back(accounted);
+    per_dof.push_back(peak_resident_bytes() / dofs);
+    for (double &x : per_dof) // (deal.II 9.4 has the vector form of max() only for ArrayView)
+      x = Utilities::MPI::max(x, comm);
+
+    JsonObject  m;
+    std::string line = "  memory per DoF (largest rank):";
+    for (unsigned int i = 0; i < parts.size(); ++i)
+      {
+        m.add(parts[i].first + "_bytes_per_dof", per_dof[i]);
+        line += " " + parts[i].first + " " + format_number(std::round(per_dof[i] * 10) / 10);
+      }
+    m.add("accounted_bytes_per_dof", per_dof[parts.size()]);
+    m.add("peak_rss_bytes_per_dof", per_dof[parts.size() + 1]);
+    line += "; accounted " + format_number(std::round(per_dof[parts.size()] * 10) / 10) +
+            " of peak RSS " + format_number(std::round(per_dof[parts.size() + 1] * 10) / 10) +
+            " B/DoF";
+    if (print && Utilities::MPI::this_mpi_process(comm) == 0)
+      std::cout << line << std::endl;
+    return m;
   }
 
   template <int dim, typename Physics>

@@ -117,6 +117,13 @@ namespace granular_dg::dg
 
     static constexpr unsigned int n_stages = 3;
 
+    /// bytes of the stage vector (0 before the first step)
+    std::size_t
+    memory_consumption() const
+    {
+      return initialized ? u1.memory_consumption() : 0;
+    }
+
   private:
     bool   initialized = false;
     Vector u1;
@@ -199,6 +206,13 @@ namespace granular_dg::dg
           else
             post_stage(r, t + c[i + 1] * dt, ai);
         }
+    }
+
+    /// bytes of the two stage registers
+    std::size_t
+    memory_consumption() const
+    {
+      return r.memory_consumption() + k.memory_consumption();
     }
 
   private:
