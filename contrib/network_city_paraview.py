@@ -19,9 +19,12 @@ is snapped to the nearest time in solution.pvd). For doc/network.md:
 import os
 import sys
 
-from paraview.simple import (AssignViewToLayout, ColorBy, CreateLayout, CreateRenderView,
-                             ExtractSurface, GetColorTransferFunction, GetScalarBar, Glyph,
-                             OpenDataFile, Render, SaveScreenshot, Show, Text, Threshold, Tube)
+from paraview.simple import (AssignViewToLayout, ColorBy, CreateLayout, ExtractSurface,
+                             GetColorTransferFunction, GetScalarBar, Glyph, OpenDataFile, Render,
+                             SaveScreenshot, Show, Text, Tube)
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from network_paraview_common import threshold_edge, white_view  # noqa: E402
 
 directory = os.path.abspath(sys.argv[1])
 png = os.path.abspath(sys.argv[2])
@@ -40,19 +43,9 @@ for t in times:
     u_max = max(u_max, reader.PointData['u'].GetRange()[1])
 
 
-def threshold_edge(lower, upper):
-    """Cells whose point field `edge` lies in [lower, upper] (0 = junction)."""
-    selected = Threshold(Input=reader, Scalars=['POINTS', 'edge'])
-    try:
-        selected.LowerThreshold, selected.UpperThreshold = lower, upper
-    except AttributeError:  # older ParaView
-        selected.ThresholdRange = [lower, upper]
-    return selected
-
-
-roads = Tube(Input=ExtractSurface(Input=threshold_edge(0.5, 1e9)),  # Tube needs polydata
+roads = Tube(Input=ExtractSurface(Input=threshold_edge(reader, 0.5, 1e9)),  # Tube needs polydata
              Radius=0.04, NumberofSides=16)
-junctions = Glyph(Input=threshold_edge(-0.5, 0.5), GlyphType='Sphere',
+junctions = Glyph(Input=threshold_edge(reader, -0.5, 0.5), GlyphType='Sphere',
                   ScaleArray=['POINTS', 'No scale array'], ScaleFactor=0.16)
 
 lut = GetColorTransferFunction('u')
@@ -69,18 +62,6 @@ except AttributeError:
     pass
 
 
-def make_view(width):
-    view = CreateRenderView()
-    view.ViewSize = [width, panel_size[1]]
-    view.OrientationAxesVisibility = 0
-    view.Background = [1, 1, 1]
-    try:
-        view.UseColorPaletteForBackground = 0
-    except AttributeError:
-        pass
-    return view
-
-
 # a row of cells: split the remaining right part of the layout each time
 views = []
 cell = 0
@@ -88,7 +69,7 @@ remaining = len(times) * panel_size[0] + bar_width
 for time in times:
     cell_left = layout.SplitHorizontal(cell, float(panel_size[0]) / remaining)
     remaining -= panel_size[0]
-    view = make_view(panel_size[0])
+    view = white_view([panel_size[0], panel_size[1]])
     AssignViewToLayout(view=view, layout=layout, hint=cell_left)
     cell = cell_left + 1
     view.ViewTime = time
@@ -111,7 +92,7 @@ for time in times:
     views.append(view)
 
 # the colour bar alone in a narrow panel on the right
-bar_view = make_view(bar_width)
+bar_view = white_view([bar_width, panel_size[1]])
 AssignViewToLayout(view=bar_view, layout=layout, hint=cell)
 bar = GetScalarBar(lut, bar_view)
 bar.Title = 'density u'

@@ -12,10 +12,12 @@ the snapshot (default: the last one).
 import os
 import sys
 
-from paraview.simple import (AssignViewToLayout, ColorBy, CreateLayout, CreateRenderView,
-                             ExtractSurface, GetColorTransferFunction, GetScalarBar, Glyph,
-                             OpenDataFile, Render, SaveScreenshot, Show, Text, Threshold, Tube,
-                             UpdatePipeline, WarpByScalar)
+from paraview.simple import (AssignViewToLayout, ColorBy, CreateLayout, ExtractSurface,
+                             GetColorTransferFunction, GetScalarBar, Glyph, OpenDataFile, Render,
+                             SaveScreenshot, Show, Text, Tube, UpdatePipeline, WarpByScalar)
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from network_paraview_common import threshold_edge, white_view  # noqa: E402
 
 directory = os.path.abspath(sys.argv[1])
 png = os.path.abspath(sys.argv[2])
@@ -29,16 +31,9 @@ layout = CreateLayout('network')
 
 
 def make_view():
-    view = CreateRenderView()
+    view = white_view([900, 700])
     AssignViewToLayout(view=view, layout=layout, hint=0)
-    view.ViewSize = [900, 700]
     view.ViewTime = time
-    view.OrientationAxesVisibility = 0
-    view.Background = [1, 1, 1]
-    try:
-        view.UseColorPaletteForBackground = 0
-    except AttributeError:
-        pass
     return view
 
 
@@ -48,12 +43,7 @@ lut.RescaleTransferFunction(u_range[0], u_range[1])
 
 # left: the network in the plane, tubes coloured by u, the vertex a sphere
 plane = make_view()
-edges = Threshold(Input=reader, Scalars=['POINTS', 'edge'])
-try:
-    edges.LowerThreshold, edges.UpperThreshold = 0.5, 1e9
-except AttributeError:
-    edges.ThresholdRange = [0.5, 1e9]
-lines = ExtractSurface(Input=edges)  # Tube needs polydata
+lines = ExtractSurface(Input=threshold_edge(reader, 0.5, 1e9))  # Tube needs polydata
 tubes = Tube(Input=lines, Radius=0.018, NumberofSides=16)
 shown = Show(tubes, plane)
 ColorBy(shown, ('POINTS', 'u'))
@@ -66,12 +56,7 @@ bar.WindowLocation = 'Any Location'
 bar.Position = [0.88, 0.08]
 bar.ScalarBarLength = 0.4
 shown.SetScalarBarVisibility(plane, True)
-vertex = Threshold(Input=reader, Scalars=['POINTS', 'edge'])
-try:
-    vertex.LowerThreshold, vertex.UpperThreshold = -0.5, 0.5
-except AttributeError:
-    vertex.ThresholdRange = [-0.5, 0.5]
-ball = Glyph(Input=vertex, GlyphType='Sphere', ScaleArray=['POINTS', 'No scale array'],
+ball = Glyph(Input=threshold_edge(reader, -0.5, 0.5), GlyphType='Sphere', ScaleArray=['POINTS', 'No scale array'],
              ScaleFactor=0.09)
 ball_shown = Show(ball, plane)
 ColorBy(ball_shown, ('POINTS', 'u'))

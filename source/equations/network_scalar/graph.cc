@@ -97,12 +97,23 @@ namespace granular_dg::network
   std::string
   Graph::describe(const unsigned int k) const
   {
+    return describe_ends(edges[k].from, edges[k].to);
+  }
+
+  std::string
+  Graph::describe_ends(const unsigned int from, const unsigned int to) const
+  {
     if (is_star())
-      return direction_name(edges[k].direction(0));
+      {
+        Edge e;
+        e.from = from;
+        e.to   = to;
+        return direction_name(e.direction(0));
+      }
     auto name = [&](const unsigned int v) {
       return v == free_end ? std::string("free end") : vertices[v].label;
     };
-    return name(edges[k].from) + " -> " + name(edges[k].to);
+    return name(from) + " -> " + name(to);
   }
 
   Point<2>

@@ -20,9 +20,6 @@ namespace granular_dg::network
 {
   namespace
   {
-    const EnumNames<FluxLaw> law_names({{FluxLaw::linear, "linear"},
-                                        {FluxLaw::burgers, "burgers"},
-                                        {FluxLaw::traffic, "traffic"}});
     const EnumNames<FarEnd>  far_end_names({{FarEnd::dirichlet, "dirichlet"},
                                             {FarEnd::outflow, "outflow"}});
     enum class EdgeKind
@@ -123,7 +120,7 @@ namespace granular_dg::network
               const std::string &parameter_name)
     {
       FluxFunction f;
-      f.law = law_names.parse(where + "flux", law);
+      f.law = flux_law_names.parse(where + "flux", law);
       if (f.law == FluxLaw::linear)
         f.speed = parameter;
       if (f.law == FluxLaw::traffic)
@@ -286,7 +283,7 @@ namespace granular_dg::network
         prm.declare_entry("length", "1", Patterns::Double(),
                           "Length L of the edge; its coordinate x runs over [0, L] in the "
                           "direction of the edge. Must be > 0.");
-        prm.declare_entry("flux", "burgers", law_names.pattern(),
+        prm.declare_entry("flux", "burgers", flux_law_names.pattern(),
                           "Flux: linear (f = a u), burgers (f = u^2/2) or traffic "
                           "(f = alpha f0(u/alpha), f0(u) = 4u(1-u)).");
         prm.declare_entry("advection speed", "1", Patterns::Double(), "a of the linear flux.");
@@ -361,12 +358,13 @@ namespace granular_dg::network
 
   void
   GraphInput::add_edge(Edge e, const std::string &at, const std::string &initial,
-                       const std::string &far_end_data)
+                       const std::string &far_end_data, const std::string &initial_name,
+                       const std::string &far_end_name)
   {
     EdgeData d;
-    d.initial = make_data(initial, at + "initial", false);
+    d.initial = make_data(initial, at + initial_name, false);
     if (e.far_end == FarEnd::dirichlet && (e.from == free_end || e.to == free_end))
-      d.far_end = make_data(far_end_data, at + "far_end_data", true);
+      d.far_end = make_data(far_end_data, at + far_end_name, true);
     graph.edges.push_back(std::move(e));
     data.push_back(d);
     initial_text.push_back(initial);
@@ -437,7 +435,8 @@ namespace granular_dg::network
         e.far_end = far.empty() ? FarEnd::outflow : far_end_names.parse(at + "far_end", far);
         const std::string initial = table.get(row, "initial");
         const std::string g       = table.get(row, "far_end_data");
-        add_edge(e, at, initial.empty() ? "0" : initial, g.empty() ? "0" : g);
+        add_edge(e, at, initial.empty() ? "0" : initial, g.empty() ? "0" : g, "initial",
+                 "far_end_data");
       }
   }
 
@@ -543,14 +542,7 @@ namespace granular_dg::network
         e.far_end = far_end_names.parse(at + "far end", prm.get("far end"));
         const std::string initial = prm.get("initial data"), far = prm.get("far end data");
         prm.leave_subsection();
-        EdgeData d;
-        d.initial = make_function<1>({initial}, {at + "initial data"}, false);
-        if (e.far_end == FarEnd::dirichlet && (e.from == free_end || e.to == free_end))
-          d.far_end = make_function<1>({far}, {at + "far end data"}, true);
-        graph.edges.push_back(e);
-        data.push_back(d);
-        initial_text.push_back(initial);
-        where.push_back(at);
+        add_edge(e, at, initial, far, "initial data", "far end data");
       }
     require(!graph.edges.empty(), "Network/Edge 1/direction", "none",
             "in, out or loop (or from/to) for at least one Network/Edge N");

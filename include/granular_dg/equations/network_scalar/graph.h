@@ -113,6 +113,9 @@ namespace granular_dg::network
     /// "free -> vertex 3", ...
     std::string
     describe(unsigned int edge) const;
+    /// the same for an edge from `from` to `to` (free_end: none)
+    std::string
+    describe_ends(unsigned int from, unsigned int to) const;
 
     /// Where vertex v is drawn: its position, or (a graph without
     /// positions) on a circle, the star's vertex at the origin.

@@ -36,10 +36,12 @@ namespace granular_dg::network
   private:
     void
     parse_sections(ParameterHandler &prm);
-    /// e with its data (numbers become constants, else expressions)
+    /// e with its data (numbers become constants, else expressions; the
+    /// names are the data's parameters in messages)
     void
     add_edge(Edge e, const std::string &where, const std::string &initial,
-             const std::string &far_end_data);
+             const std::string &far_end_data, const std::string &initial_name,
+             const std::string &far_end_name);
     /// per vertex: whether its initial value was given (else the default)
     std::vector<bool> value_given;
     /// the graph file's vertex ids, in the order of graph.vertices

@@ -84,6 +84,10 @@ namespace granular_dg::network
     burgers, ///< f = u^2 / 2
     traffic  ///< f = 4 u (1 - u / alpha)
   };
+  /// Their names in the prm and in CSV graph files.
+  inline const EnumNames<FluxLaw> flux_law_names({{FluxLaw::linear, "linear"},
+                                                  {FluxLaw::burgers, "burgers"},
+                                                  {FluxLaw::traffic, "traffic"}});
 
   /// A flux law with its parameters.
   struct FluxFunction
