@@ -240,7 +240,9 @@ def main():
     ap.add_argument("--step67-dims", default="2,1",
                     help="2: the vortex on 128^2 cells; 1: a smooth entropy wave on 1024 cells")
     ap.add_argument("--cases", default=",".join(CASES))
-    ap.add_argument("--mpi", action="store_true", help="also layered_2d on 2 ranks (p = 2, 3)")
+    ap.add_argument("--mpi", action="store_true",
+                    help="also on 2 ranks: layered_2d (p = 2, 3) and network_grid (p = 0, 2), "
+                         "those of --cases")
     ap.add_argument("--reuse", action="store_true", help="take runs with a result already there")
     a = ap.parse_args()
     os.makedirs(a.out, exist_ok=True)
@@ -256,11 +258,12 @@ def main():
                 print(r, flush=True)
                 write_tables(a.out, rows)
     if a.mpi:
-        for p in (2, 3):
-            r = run_ours(a.build, a.out, "layered_2d", p, a.quick, ranks=2, reuse=a.reuse)
-            if r:
-                rows.append(r)
-                print(r, flush=True)
+        for name, mpi_degrees in (("layered_2d", (2, 3)), ("network_grid", (0, 2))):
+            for p in mpi_degrees if name in a.cases.split(",") else ():
+                r = run_ours(a.build, a.out, name, p, a.quick, ranks=2, reuse=a.reuse)
+                if r:
+                    rows.append(r)
+                    print(r, flush=True)
     if not a.no_step67:
         # 2D: [0,10] x [-5,5], 4 x 2^refinements cells per direction: 128^2
         # cells, as many DoFs as the 2D strip (0.3-1.2 M); 1D: [0, 10],

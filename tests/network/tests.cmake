@@ -213,3 +213,40 @@ granular_dg_test(network/city_grid_mass_p0 PRM ../prm/network_city_grid.prm ${ci
        --set "Time stepping/CFL number=0.5"
   COMPARE summary.json:diagnostics/mass_balance_residual_max,diagnostics/mass_step_residual_max NUMDIFF -a 1e-13 -r 0
   EXPECT_FILES profile-0006.csv)
+
+# Edges over MPI ranks (issue 20): the solution does not depend on the number
+# of ranks, bit for bit (tests/network/rank_equivalence.py prints the number
+# of profile and VTU files that differ from the one-rank run: 0; and the
+# column-scaled difference of timeseries.csv without the round-off column
+# mass_balance_residual, compared with 0 at 1e-12). The city grid at degree 2
+# with the limiter on 1, 2 and 3 ranks (and stopped on 2 ranks, resumed on
+# 3); the chain, whose vertices have no volume (their traces are exchanged
+# after the limiter too), stopped on 3 and resumed on 2; the city grid at
+# degree 0, whose maximum-principle bounds are reduced over the ranks.
+# RUN_SERIAL: three processes on two cores.
+set(rank_equivalence ${TEST_PYTHON} ARGS ${CMAKE_CURRENT_SOURCE_DIR}/network/rank_equivalence.py
+  $<TARGET_FILE:granular_dg>)
+set(city_small --set "Network/cells per unit length=8" --set "Time stepping/final time=1"
+  --set "Output/output times=0.5, 1")
+granular_dg_test(network/rank_equivalence_city EXE ${rank_equivalence}
+  ${CMAKE_CURRENT_SOURCE_DIR}/../prm/network_city_grid.prm 1 2 3 --resume 60:2:3 ${city_small}
+  COMPARE stdout KEEP_OUTPUT NUMDIFF -a 1e-12 -r 0 LABELS mpi)
+granular_dg_test(network/rank_equivalence_chain EXE ${rank_equivalence}
+  ${CMAKE_CURRENT_SOURCE_DIR}/network/chain.prm 1 2 3 --resume 50:3:2
+  COMPARE stdout KEEP_OUTPUT NUMDIFF -a 1e-12 -r 0 LABELS mpi)
+granular_dg_test(network/rank_equivalence_city_p0 EXE ${rank_equivalence}
+  ${CMAKE_CURRENT_SOURCE_DIR}/../prm/network_city_grid.prm 1 3 ${city_small}
+  --set Discretization/degree=0 --set "Time stepping/CFL number=0.5" --set Limiter/scheme=none
+  COMPARE stdout KEEP_OUTPUT NUMDIFF -a 1e-12 -r 0 LABELS mpi)
+set_tests_properties(network/rank_equivalence_city network/rank_equivalence_chain
+  network/rank_equivalence_city_p0 PROPERTIES RUN_SERIAL TRUE)
+
+# A failure found on rank 1 of 2 (the partition puts Vertex 22 there): the
+# city grid at degree 0 with vertex cells of 0.05 the paper's width blows up
+# at a vertex; every rank stops with the one-rank run's status (the vertex,
+# time, step and value), exit 3, the last good state written.
+granular_dg_test(network/failure_on_rank_1 PRM ../prm/network_city_grid.prm ${city_files} MPI 2 EXIT 3
+  ARGS --set "Network/cells per unit length=8" --set Discretization/degree=0
+       --set "Time stepping/CFL number=1" --set Limiter/scheme=none
+       --set "Network/vertex width factor=0.05"
+  COMPARE summary.json:status,final_time NUMDIFF -r 1e-9 LABELS mpi)

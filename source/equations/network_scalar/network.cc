@@ -44,8 +44,9 @@ namespace granular_dg::network
     std::unique_ptr<dg::Operator<1>>  op;
     std::unique_ptr<EdgeLimiter>      limiter;
     dg::CellQuadrature<1>             quadrature;
-    /// layout cell numbers in the order of increasing x
-    std::vector<unsigned int> order;
+    /// layout cell numbers in the order of increasing x, and the vector
+    /// entries of their means (mode 0)
+    std::vector<unsigned int> order, means;
     double                    h = 0;
     /// the vector entries of the modes of the cells at x = 0 and x = L
     std::array<std::vector<unsigned int>, 2> end_dofs;
@@ -159,23 +160,34 @@ namespace granular_dg::network
       return v == free_end ? nullptr : vertex_data[v];
     };
     h_min = 1e300;
-    for (unsigned int k = 0; k < net.edges.size(); ++k)
+    std::vector<double> h;
+    for (const Edge &e : net.edges)
+      {
+        edge_cells.push_back(std::max(
+          1u, static_cast<unsigned int>(std::lround(e.length * disc.cells_per_unit_length))));
+        h.push_back(e.length / edge_cells.back());
+        h_min = std::min(h_min, h.back());
+      }
+    ranks = std::make_unique<EdgePartition>(net, edge_cells, MPI_COMM_WORLD);
+    // the line engine whatever the number of ranks: every edge is a serial
+    // mesh, and the answer must not depend on the ranks
+    const dg::Engine engine = disc.engine == dg::Engine::automatic ? dg::Engine::line : disc.engine;
+    edge.resize(net.edges.size());
+    for (const unsigned int k : ranks->edges())
       {
         const Edge &e  = net.edges[k];
         auto        ed = std::make_unique<EdgeDiscretisation>();
-        const unsigned int n =
-          std::max(1u, static_cast<unsigned int>(std::lround(e.length * disc.cells_per_unit_length)));
+        const unsigned int n = edge_cells[k];
         GridGenerator::subdivided_hyper_rectangle(ed->tria, std::vector<unsigned int>{n},
                                                   Point<1>(0.), Point<1>(e.length), true);
-        ed->h = e.length / n;
-        h_min = std::min(h_min, ed->h);
+        ed->h = h[k];
         ed->dof_handler.reinit(ed->tria);
         ed->dof_handler.distribute_dofs(*fe);
 
         const auto   boundary =
           edge_boundary(e, data[k], {{vertex_function(e.from), vertex_function(e.to)}});
         const System system(e.flux, disc.flux);
-        ed->op = dg::make_operator<1>(disc.engine, system, boundary);
+        ed->op = dg::make_operator<1>(engine, system, boundary);
         ed->op->reinit(ed->mapping, ed->dof_handler);
         ed->limiter = std::make_unique<EdgeLimiter>(system, disc.limiter, disc.tvb_M, boundary);
         ed->limiter->reinit(ed->dof_handler);
@@ -188,32 +200,36 @@ namespace granular_dg::network
         std::sort(ed->order.begin(), ed->order.end(), [&](unsigned int a, unsigned int b) {
           return layout.cell(a)->vertex(0)[0] < layout.cell(b)->vertex(0)[0];
         });
+        for (const unsigned int c : ed->order)
+          ed->means.push_back(layout.index(c, 0, 0));
         for (unsigned int m = 0; m <= disc.degree; ++m)
           {
             ed->end_dofs[0].push_back(layout.index(ed->first(), 0, m));
             ed->end_dofs[1].push_back(layout.index(ed->last(), 0, m));
           }
-        edge.push_back(std::move(ed));
+        edge[k] = std::move(ed);
       }
 
+    const auto &first = *edge[ranks->edges().front()];
     for (unsigned int m = 0; m <= disc.degree; ++m)
       {
-        end_values[0].push_back(edge.front()->layout().value_at_0(m));
-        end_values[1].push_back(edge.front()->layout().value_at_1(m));
+        end_values[0].push_back(first.layout().value_at_0(m));
+        end_values[1].push_back(first.layout().value_at_1(m));
       }
     auto ends = net.all_vertex_ends();
     for (unsigned int v = 0; v < net.vertices.size(); ++v)
       {
         double width = 0;
         for (const auto &end : ends[v])
-          width += 0.5 * edge[end.edge]->h;
+          width += 0.5 * h[end.edge];
         junctions.emplace_back(net, v, std::move(ends[v]), disc.flux,
                                net.vertices[v].width_factor * width);
       }
 
+    exchanged.assign(ranks->n_slots(), 0.);
     u.vertices.assign(net.vertices.size(), 0.);
     u.edges.resize(edge.size());
-    for (unsigned int k = 0; k < edge.size(); ++k)
+    for (const unsigned int k : ranks->edges())
       edge[k]->op->initialize_vector(u.edges[k]);
   }
 
@@ -231,17 +247,13 @@ namespace granular_dg::network
   NetworkProblem::n_dofs() const
   {
     // the edges' modes and the vertex values
-    return net.vertices.size() + std::accumulate(edge.begin(), edge.end(), 0ul, [](unsigned long n, const auto &e) {
-             return n + e->dof_handler.n_dofs();
-           });
+    return net.vertices.size() + n_cells() * (disc.degree + 1);
   }
 
   unsigned long
   NetworkProblem::n_cells() const
   {
-    return std::accumulate(edge.begin(), edge.end(), 0ul, [](unsigned long n, const auto &e) {
-      return n + e->tria.n_active_cells();
-    });
+    return std::accumulate(edge_cells.begin(), edge_cells.end(), 0ul);
   }
 
   EvolutionInfo
@@ -268,8 +280,9 @@ namespace granular_dg::network
       vertices = std::to_string(net.vertices.size()) + " vertices";
     i.description = std::to_string(net.edges.size()) + " edges, " + vertices + ", " +
                     std::to_string(i.n_cells) + " cells, " + std::to_string(i.n_dofs) +
-                    " DoFs, degree " + std::to_string(disc.degree) + ", " + integrator;
-    i.method.add("engine", edge.front()->op->engine_name());
+                    " DoFs, degree " + std::to_string(disc.degree) + ", " + integrator +
+                    (ranks->parallel() ? "; " + ranks->describe() : "");
+    i.method.add("engine", edge[ranks->edges().front()]->op->engine_name());
     i.method.add("numerical_flux", numerical_flux_names.name(disc.flux));
     i.method.add("limiter", disc.limiter_name);
     i.method.add("scheme", integrator);
@@ -296,7 +309,7 @@ namespace granular_dg::network
   NetworkProblem::initialize()
   {
     const QGauss<1> quad(disc.degree + 3);
-    for (unsigned int k = 0; k < edge.size(); ++k)
+    for (const unsigned int k : ranks->edges())
       {
         const auto &layout = edge[k]->layout();
         data[k].initial->set_time(0.);
@@ -318,23 +331,26 @@ namespace granular_dg::network
           }
       }
     // the limiter sees the vertex values as the neighbours of the edge ends
-    for (unsigned int v = 0; v < junctions.size(); ++v)
+    exchange_traces(u);
+    for (const unsigned int v : ranks->vertices())
       {
         const auto &given = net.vertices[v].initial_value;
-        u.vertices[v]     = given ? *given : junctions[v].balance(vertex_traces(u, v), 0.);
+        u.vertices[v]     = given ? *given : balance_at(v, vertex_traces(u, v), 0.);
         vertex_data[v]->u0 = u.vertices[v];
       }
-    for (unsigned int k = 0; k < edge.size(); ++k)
+    for (const unsigned int k : ranks->edges())
       edge[k]->limiter->apply(u.edges[k], 0.);
-    for (unsigned int v = 0; v < junctions.size(); ++v)
+    exchange_traces(u);
+    for (const unsigned int v : ranks->vertices())
       if (!net.vertices[v].initial_value || junctions[v].width() == 0)
-        u.vertices[v] = junctions[v].balance(vertex_traces(u, v), 0.);
+        u.vertices[v] = balance_at(v, vertex_traces(u, v), 0.);
     t      = 0.;
     inflow = 0.;
     balance.mass0 = mass();
-    balance.scale = l1_norm() > 0 ? l1_norm() : 1.;
+    const double l1 = l1_norm();
+    balance.scale = l1 > 0 ? l1 : 1.;
     tv0 = tv_max = total_variation();
-    u00          = u.vertices.empty() ? 0. : u.vertices[0];
+    u00          = u.vertices.empty() ? 0. : vertex_values()[0];
     return 0.;
   }
 
@@ -373,16 +389,64 @@ namespace granular_dg::network
   NetworkProblem::vertex_traces(const NetworkState &s, const unsigned int v) const
   {
     trace_buffer.clear();
-    for (const auto &end : junctions[v].ends())
-      trace_buffer.push_back(trace(end.edge, end.incoming, s));
+    const auto &ends = junctions[v].ends();
+    for (unsigned int i = 0; i < ends.size(); ++i)
+      {
+        const int slot = ranks->slot(v, i);
+        trace_buffer.push_back(slot >= 0 ? exchanged[slot] :
+                                           trace(ends[i].edge, ends[i].incoming, s));
+      }
     return trace_buffer;
+  }
+
+  void
+  NetworkProblem::exchange_traces(const NetworkState &s) const
+  {
+    if (ranks->n_cut_vertices() == 0)
+      return;
+    const auto &sent = ranks->sent_ends();
+    exchanged.assign(exchanged.size(), 0.);
+    for (const auto &end : sent)
+      exchanged[end.slot] = trace(end.edge, end.at_end, s);
+    ranks->exchange(exchanged);
+  }
+
+  double
+  NetworkProblem::balance_at(const unsigned int v, const std::vector<double> &traces,
+                             const double time) const
+  {
+    if (!ranks->parallel())
+      return junctions[v].balance(traces, time);
+    try
+      {
+        return junctions[v].balance(traces, time);
+      }
+    catch (const RunError &e)
+      {
+        if (!pending_error)
+          pending_error = e.what();
+        return NAN;
+      }
+  }
+
+  std::vector<double>
+  NetworkProblem::vertex_values() const
+  {
+    if (!ranks->parallel())
+      return u.vertices;
+    std::vector<double> all(u.vertices.size(), 0.);
+    for (const unsigned int v : ranks->vertices())
+      if (ranks->reports_vertex(v))
+        all[v] = u.vertices[v];
+    ranks->sum(all.data(), all.size());
+    return all;
   }
 
   double
   NetworkProblem::far_end_inflow(const double time, const NetworkState &s) const
   {
     double sum = 0;
-    for (unsigned int k = 0; k < edge.size(); ++k)
+    for (const unsigned int k : ranks->edges())
       {
         const Edge &e = net.edges[k];
         // the free end x = 0 (inflow side) and x = L (outflow side)
@@ -408,19 +472,19 @@ namespace granular_dg::network
   double
   NetworkProblem::vertex_state(const unsigned int v, const NetworkState &s, const double time) const
   {
-    return junctions[v].width() > 0 ? s.vertices[v] :
-                                      junctions[v].balance(vertex_traces(s, v), time);
+    return junctions[v].width() > 0 ? s.vertices[v] : balance_at(v, vertex_traces(s, v), time);
   }
 
   const std::vector<double> &
   NetworkProblem::couple(const double time, const NetworkState &src) const
   {
     rates.resize(junctions.size());
-    for (unsigned int v = 0; v < junctions.size(); ++v)
+    exchange_traces(src);
+    for (const unsigned int v : ranks->vertices())
       {
         const auto  &traces = vertex_traces(src, v);
         const double u0     = junctions[v].width() > 0 ? src.vertices[v] :
-                                                         junctions[v].balance(traces, time);
+                                                         balance_at(v, traces, time);
         vertex_data[v]->u0  = u0;
         rates[v]            = junctions[v].rate(traces, u0);
       }
@@ -435,12 +499,12 @@ namespace granular_dg::network
     // the vertex coupling is part of the right-hand side of the network
     StepPhases::Scope scope(phases, StepPhases::operator_apply);
     const auto       &rate = couple(time, src);
-    for (unsigned int k = 0; k < edge.size(); ++k)
+    for (const unsigned int k : ranks->edges())
       edge[k]->op->apply_stage(
         time, src.edges[k], dst.edges[k],
         dg::StageUpdate<>{s.old ? &s.old->edges[k] : nullptr, s.alpha, s.beta, s.gamma});
     dst.vertices.resize(src.vertices.size());
-    for (unsigned int v = 0; v < junctions.size(); ++v)
+    for (const unsigned int v : ranks->vertices())
       dst.vertices[v] =
         dg::stage_value(s, src.vertices[v], s.old ? s.old->vertices[v] : 0., rate[v]);
   }
@@ -449,10 +513,10 @@ namespace granular_dg::network
   NetworkProblem::range_of_step(const double time, const double dt) const
   {
     double lo = INFINITY, hi = -INFINITY;
-    for (const double v : u.vertices)
+    for (const unsigned int v : ranks->vertices())
       {
-        lo = std::min(lo, v);
-        hi = std::max(hi, v);
+        lo = std::min(lo, u.vertices[v]);
+        hi = std::max(hi, u.vertices[v]);
       }
     for (const auto &e : u.edges)
       for (const double v : e)
@@ -460,7 +524,7 @@ namespace granular_dg::network
           lo = std::min(lo, v);
           hi = std::max(hi, v);
         }
-    for (unsigned int k = 0; k < net.edges.size(); ++k)
+    for (const unsigned int k : ranks->edges())
       for (const bool start : {true, false})
         if ((start ? net.edges[k].from : net.edges[k].to) == free_end &&
             net.edges[k].far_end == FarEnd::dirichlet)
@@ -471,25 +535,19 @@ namespace granular_dg::network
               lo = std::min(lo, g);
               hi = std::max(hi, g);
             }
-    return {lo, hi};
+    return {ranks->min(lo), ranks->max(hi)};
   }
 
   void
   NetworkProblem::check_maximum_principle(const NetworkState &s, const double stage_time)
   {
-    // a vertex is a neighbour of its edge ends: its (stage) value is a
-    // value the edges may take on
-    for (const double v : s.vertices)
-      {
-        bounds.first  = std::min(bounds.first, v);
-        bounds.second = std::max(bounds.second, v);
-      }
     const auto [lo, hi] = bounds;
     const double tol    = 1e-12 * (hi - lo + std::max(std::abs(lo), std::abs(hi)));
-    for (unsigned int k = 0; k < edge.size(); ++k)
-      for (const unsigned int c : edge[k]->order)
+    for (const unsigned int k : ranks->edges())
+      for (unsigned int i = 0; i < edge[k]->means.size(); ++i)
         {
-          const double v = s.edges[k](edge[k]->layout().index(c, 0, 0));
+          const double v = s.edges[k].local_element(edge[k]->means[i]);
+          const unsigned int c = edge[k]->order[i];
           if (v < lo - tol || v > hi + tol)
             throw failure(stage_time, int(k),
                           edge[k]->left(c) + 0.5 * edge[k]->layout().extent(c, 0), v,
@@ -507,13 +565,19 @@ namespace granular_dg::network
   {
     {
       StepPhases::Scope scope(phases, StepPhases::limiter);
-      for (unsigned int v = 0; v < junctions.size(); ++v)
+      // vertices without volume follow the traces: shared ones need them
+      const bool shared = ranks->has_cut_vertex_without_volume();
+      if (shared)
+        exchange_traces(s);
+      for (const unsigned int v : ranks->vertices())
         vertex_data[v]->u0 = vertex_state(v, s, stage_time);
-      for (unsigned int k = 0; k < edge.size(); ++k)
+      for (const unsigned int k : ranks->edges())
         edge[k]->limiter->apply(s.edges[k], stage_time);
-      for (unsigned int v = 0; v < junctions.size(); ++v)
+      if (shared)
+        exchange_traces(s);
+      for (const unsigned int v : ranks->vertices())
         if (junctions[v].width() == 0)
-          s.vertices[v] = junctions[v].balance(vertex_traces(s, v), stage_time);
+          s.vertices[v] = balance_at(v, vertex_traces(s, v), stage_time);
     }
     StepPhases::Scope scope(phases, StepPhases::admissibility);
     post_stage_checks(s, stage_time);
@@ -522,11 +586,43 @@ namespace granular_dg::network
   void
   NetworkProblem::post_stage_checks(const NetworkState &s, const double stage_time)
   {
-    for (unsigned int v = 0; v < s.vertices.size(); ++v)
+    const bool principle =
+      disc.degree == 0 && std::isfinite(bounds.first) && std::isfinite(bounds.second);
+    if (principle)
+      {
+        // a vertex is a neighbour of its edge ends: its (stage) value is a
+        // value the edges may take on
+        for (const unsigned int v : ranks->vertices())
+          {
+            bounds.first  = std::min(bounds.first, s.vertices[v]);
+            bounds.second = std::max(bounds.second, s.vertices[v]);
+          }
+        bounds = {ranks->min(bounds.first), ranks->max(bounds.second)};
+      }
+    // every rank checks its part, then all report the first failure
+    std::optional<Inadmissible> found;
+    try
+      {
+        local_checks(s, stage_time, principle);
+      }
+    catch (const Inadmissible &f)
+      {
+        found = f;
+      }
+    std::optional<std::string> error;
+    std::swap(error, pending_error);
+    ranks->agree(found, error);
+  }
+
+  void
+  NetworkProblem::local_checks(const NetworkState &s, const double stage_time,
+                               const bool principle)
+  {
+    for (const unsigned int v : ranks->vertices())
       if (!std::isfinite(s.vertices[v]))
         throw failure(stage_time, -1 - int(v), 0., s.vertices[v], "vertex value is not finite");
     // (non-finite values fail this test too, and are reported as such below)
-    if (disc.degree == 0 && std::isfinite(bounds.first) && std::isfinite(bounds.second))
+    if (principle)
       {
         bool finite = true;
         for (const auto &e : s.edges)
@@ -535,7 +631,7 @@ namespace granular_dg::network
         if (finite)
           check_maximum_principle(s, stage_time);
       }
-    for (unsigned int k = 0; k < edge.size(); ++k)
+    for (const unsigned int k : ranks->edges())
       if (!all_finite(s.edges[k]))
         {
           // report the first cell whose modes are not finite
@@ -552,14 +648,15 @@ namespace granular_dg::network
   NetworkProblem::time_step(const double time)
   {
     double speed_over_h = 0;
-    for (unsigned int k = 0; k < edge.size(); ++k)
+    for (const unsigned int k : ranks->edges())
       speed_over_h = std::max(speed_over_h, edge[k]->op->max_speed_over_h(u.edges[k], 0.));
-    for (unsigned int v = 0; v < junctions.size(); ++v)
+    for (const unsigned int v : ranks->vertices())
       for (const auto &end : junctions[v].ends())
-        speed_over_h = std::max(speed_over_h,
-                                std::abs(net.edges[end.edge].flux.derivative(u.vertices[v])) /
-                                  edge[end.edge]->h);
-    const double dt = disc.cfl / speed_over_h;
+        if (ranks->owns_edge(end.edge))
+          speed_over_h = std::max(speed_over_h,
+                                  std::abs(net.edges[end.edge].flux.derivative(u.vertices[v])) /
+                                    edge[end.edge]->h);
+    const double dt = disc.cfl / ranks->max(speed_over_h);
     if (!(std::isfinite(dt) && dt > 0))
       throw RunError("time step is " + format_number(dt) + " at t = " + format_number(time) +
                      " (all characteristic speeds vanish or are not finite)");
@@ -595,17 +692,22 @@ namespace granular_dg::network
   double
   NetworkProblem::balance_residual() const
   {
-    return (mass() - balance.mass0 - inflow) / balance.scale;
+    double sums[2] = {local_mass(), inflow};
+    ranks->sum(sums, 2);
+    return (sums[0] - balance.mass0 - sums[1]) / balance.scale;
   }
 
   void
   NetworkProblem::end_of_step(const double, const double, const unsigned long)
   {
-    const double r       = balance_residual();
+    // one reduction for the step's diagnostics
+    double sums[3] = {local_mass(), inflow, local_total_variation()};
+    ranks->sum(sums, 3);
+    const double r       = (sums[0] - balance.mass0 - sums[1]) / balance.scale;
     balance.max_residual = std::max(balance.max_residual, std::abs(r));
     balance.max_step     = std::max(balance.max_step, std::abs(r - balance.last));
     balance.last         = r;
-    tv_max               = std::max(tv_max, total_variation());
+    tv_max               = std::max(tv_max, sums[2]);
   }
 
   void
@@ -623,11 +725,26 @@ namespace granular_dg::network
   double
   NetworkProblem::mass() const
   {
+    return ranks->sum(local_mass());
+  }
+
+  double
+  NetworkProblem::local_mass() const
+  {
     double m = 0;
-    for (unsigned int v = 0; v < junctions.size(); ++v)
-      m += junctions[v].width() * u.vertices[v];
-    for (unsigned int k = 0; k < edge.size(); ++k)
-      m += edge[k]->quadrature.integrals(u.edges[k])[0];
+    for (const unsigned int v : ranks->vertices())
+      if (ranks->reports_vertex(v))
+        m += junctions[v].width() * u.vertices[v];
+    // CellQuadrature::integrals of every edge, without its allocation and
+    // its reduction over the edge's (one-rank) communicator
+    for (const unsigned int k : ranks->edges())
+      {
+        const auto &layout = edge[k]->layout();
+        double      integral = 0;
+        for (unsigned int c = 0; c < layout.n_owned(); ++c)
+          integral += edge[k]->quadrature.measure(c) * u.edges[k].local_element(layout.index(c, 0, 0));
+        m += integral;
+      }
     return m;
   }
 
@@ -635,48 +752,60 @@ namespace granular_dg::network
   NetworkProblem::l1_norm() const
   {
     double m = 0;
-    for (unsigned int v = 0; v < junctions.size(); ++v)
-      m += junctions[v].width() * std::abs(u.vertices[v]);
-    for (unsigned int k = 0; k < edge.size(); ++k)
+    for (const unsigned int v : ranks->vertices())
+      if (ranks->reports_vertex(v))
+        m += junctions[v].width() * std::abs(u.vertices[v]);
+    for (const unsigned int k : ranks->edges())
       {
         const auto &layout = edge[k]->layout();
         for (const unsigned int c : edge[k]->order)
           m += std::abs(u.edges[k](layout.index(c, 0, 0))) * layout.extent(c, 0);
       }
-    return m;
+    return ranks->sum(m);
   }
 
   double
   NetworkProblem::rh_residual() const
   {
+    // every vertex's residual on the rank that reports it, then the
+    // largest as on one rank
+    exchange_traces(u);
+    std::vector<double> residual(junctions.size(), 0.);
+    for (const unsigned int v : ranks->vertices())
+      if (ranks->reports_vertex(v))
+        residual[v] = -junctions[v].net_outflow(vertex_traces(u, v), u.vertices[v]);
+    ranks->sum(residual.data(), residual.size());
     double largest = 0;
     for (unsigned int v = 0; v < junctions.size(); ++v)
-      {
-        const double r = -junctions[v].net_outflow(vertex_traces(u, v), u.vertices[v]);
-        if (std::abs(r) > std::abs(largest) || v == 0)
-          largest = r;
-      }
+      if (std::abs(residual[v]) > std::abs(largest) || v == 0)
+        largest = residual[v];
     return largest;
   }
 
   double
   NetworkProblem::total_variation() const
   {
+    return ranks->sum(local_total_variation());
+  }
+
+  double
+  NetworkProblem::local_total_variation() const
+  {
     double tv = 0;
-    for (unsigned int k = 0; k < edge.size(); ++k)
+    for (const unsigned int k : ranks->edges())
       {
-        const auto &layout = edge[k]->layout();
-        const auto &order  = edge[k]->order;
-        for (unsigned int i = 0; i + 1 < order.size(); ++i)
-          tv += std::abs(u.edges[k](layout.index(order[i + 1], 0, 0)) -
-                         u.edges[k](layout.index(order[i], 0, 0)));
+        const auto &means = edge[k]->means;
+        for (unsigned int i = 0; i + 1 < means.size(); ++i)
+          tv += std::abs(u.edges[k].local_element(means[i + 1]) -
+                         u.edges[k].local_element(means[i]));
       }
-    for (unsigned int v = 0; v < junctions.size(); ++v)
+    for (const unsigned int v : ranks->vertices())
       for (const auto &end : junctions[v].ends())
+        if (ranks->owns_edge(end.edge))
         {
           const auto        &e = *edge[end.edge];
           const unsigned int c = end.incoming ? e.last() : e.first();
-          tv += std::abs(u.vertices[v] - u.edges[end.edge](e.layout().index(c, 0, 0)));
+          tv += std::abs(u.vertices[v] - u.edges[end.edge].local_element(e.layout().index(c, 0, 0)));
         }
     return tv;
   }
@@ -688,7 +817,7 @@ namespace granular_dg::network
     const QGauss<1> quad(2 * disc.degree + 8);
     double          l2 = 0;
     e.l1_per_edge.assign(edge.size(), 0.);
-    for (unsigned int k = 0; k < edge.size(); ++k)
+    for (const unsigned int k : ranks->edges())
       {
         const auto &layout = edge[k]->layout();
         const auto  breaks = solution.breakpoints(k, time);
@@ -713,18 +842,26 @@ namespace granular_dg::network
                 }
           }
       }
+    for (const unsigned int v : ranks->vertices())
+      if (ranks->reports_vertex(v))
+        {
+          const double d0 = std::abs(u.vertices[v] - solution.vertex_value(v, time));
+          e.l1_vertex += junctions[v].width() * d0;
+          l2 += junctions[v].width() * d0 * d0;
+          if (junctions[v].width() > 0)
+            e.linf = std::max(e.linf, d0);
+        }
+    // each edge's error comes from one rank: the sum over the edges is the
+    // one of a serial run
+    ranks->sum(e.l1_per_edge.data(), e.l1_per_edge.size());
+    double sums[2] = {e.l1_vertex, l2};
+    ranks->sum(sums, 2);
+    e.l1_vertex = sums[0];
+    e.linf      = ranks->max(e.linf);
     for (const double l1 : e.l1_per_edge)
       e.l1_edges += l1;
-    for (unsigned int v = 0; v < junctions.size(); ++v)
-      {
-        const double d0 = std::abs(u.vertices[v] - solution.vertex_value(v, time));
-        e.l1_vertex += junctions[v].width() * d0;
-        l2 += junctions[v].width() * d0 * d0;
-        if (junctions[v].width() > 0)
-          e.linf = std::max(e.linf, d0);
-      }
     e.l1 = e.l1_edges + e.l1_vertex;
-    e.l2 = std::sqrt(l2);
+    e.l2 = std::sqrt(sums[1]);
     return e;
   }
 
@@ -733,9 +870,10 @@ namespace granular_dg::network
   {
     const QGauss<1> quad(disc.degree + 2);
     double          sum = 0;
-    for (unsigned int v = 0; v < junctions.size(); ++v)
-      sum += junctions[v].width() * std::abs(u.vertices[v] - other.u.vertices[v]);
-    for (unsigned int k = 0; k < edge.size(); ++k)
+    for (const unsigned int v : ranks->vertices())
+      if (ranks->reports_vertex(v))
+        sum += junctions[v].width() * std::abs(u.vertices[v] - other.u.vertices[v]);
+    for (const unsigned int k : ranks->edges())
       {
         const auto &layout = edge[k]->layout();
         for (const unsigned int c : edge[k]->order)
@@ -745,14 +883,14 @@ namespace granular_dg::network
                             other.edge[k]->layout().value(other.u.edges[k], c, 0,
                                                           quad.point(q)[0]));
       }
-    return sum;
+    return ranks->sum(sum);
   }
 
   std::vector<std::vector<std::pair<double, double>>>
   NetworkProblem::sample(const unsigned int points_per_cell) const
   {
     std::vector<std::vector<std::pair<double, double>>> out(edge.size());
-    for (unsigned int k = 0; k < edge.size(); ++k)
+    for (const unsigned int k : ranks->edges())
       {
         const auto &layout = edge[k]->layout();
         for (const unsigned int c : edge[k]->order)
@@ -763,6 +901,38 @@ namespace granular_dg::network
                                   layout.value(u.edges[k], c, 0, xi));
             }
       }
+    return out;
+  }
+
+  std::vector<std::vector<std::pair<double, double>>>
+  NetworkProblem::gathered_sample(const unsigned int points_per_cell) const
+  {
+    auto out = sample(points_per_cell);
+    if (!ranks->parallel())
+      return out;
+    // this rank's edges as (k, n, x_0, u_0, ..., x_n-1, u_n-1)
+    std::vector<double> mine;
+    for (const unsigned int k : ranks->edges())
+      {
+        mine.push_back(k);
+        mine.push_back(out[k].size());
+        for (const auto &[x, value] : out[k])
+          {
+            mine.push_back(x);
+            mine.push_back(value);
+          }
+      }
+    const auto all = Utilities::MPI::gather(ranks->communicator(), mine, 0);
+    for (const auto &part : all)
+      for (std::size_t i = 0; i < part.size();)
+        {
+          const auto k = static_cast<unsigned int>(part[i]);
+          const auto n = static_cast<std::size_t>(part[i + 1]);
+          out[k].resize(n);
+          for (std::size_t j = 0; j < n; ++j)
+            out[k][j] = {part[i + 2 + 2 * j], part[i + 3 + 2 * j]};
+          i += 2 + 2 * n;
+        }
     return out;
   }
 
@@ -801,9 +971,9 @@ namespace granular_dg::network
   NetworkProblem::timeseries_values(const double time)
   {
     const bool          vertices = !junctions.empty();
-    std::vector<double> row{mass(), std::abs(balance_residual()), inflow};
+    std::vector<double> row{mass(), std::abs(balance_residual()), boundary_inflow()};
     if (vertices)
-      row.push_back(u.vertices[0]);
+      row.push_back(vertex_values()[0]);
     row.push_back(total_variation());
     if (vertices)
       row.push_back(rh_residual());
@@ -821,11 +991,12 @@ namespace granular_dg::network
 
   template <typename Archive>
   void
-  NetworkProblem::state_io(Archive &ar)
+  NetworkProblem::state_io(Archive &ar, std::vector<double> &vertices,
+                           std::vector<std::vector<double>> &modes, double &total_inflow)
   {
     // the graph's size first: a graph file changed since the checkpoint
     // (the parameters name the file, not its content) is refused
-    std::uint64_t n_vertices = u.vertices.size(), n_edges = u.edges.size();
+    std::uint64_t n_vertices = vertices.size(), n_edges = modes.size();
     ar.io(n_vertices);
     ar.io(n_edges);
     if (n_vertices != u.vertices.size() || n_edges != u.edges.size())
@@ -833,16 +1004,14 @@ namespace granular_dg::network
                      " vertices and " + std::to_string(n_edges) + " edges, this one " +
                      std::to_string(u.vertices.size()) + " and " +
                      std::to_string(u.edges.size()));
-    ar.io(inflow);
-    for (double &v : u.vertices)
+    ar.io(total_inflow);
+    for (double &v : vertices)
       ar.io(v);
-    for (auto &e : u.edges)
+    for (unsigned int k = 0; k < modes.size(); ++k)
       {
-        std::vector<double> modes(e.begin(), e.end());
-        ar.io(modes);
-        if (modes.size() != e.size())
+        ar.io(modes[k]);
+        if (modes[k].size() != edge_cells[k] * (disc.degree + 1))
           throw RunError("the checkpoint's network has other edge sizes");
-        std::copy(modes.begin(), modes.end(), e.begin());
       }
     for (double *x : {&balance.mass0, &balance.scale, &balance.last, &balance.max_residual,
                       &balance.max_step, &tv0, &u00, &tv_max})
@@ -852,13 +1021,42 @@ namespace granular_dg::network
   void
   NetworkProblem::save(ByteWriter &w)
   {
-    state_io(w);
+    // every edge's modes in the order of the graph, on rank 0 (which writes
+    // the checkpoint): the file does not depend on the number of ranks
+    std::vector<std::vector<double>> modes(u.edges.size());
+    std::vector<double>              mine;
+    for (const unsigned int k : ranks->edges())
+      {
+        modes[k].assign(u.edges[k].begin(), u.edges[k].end());
+        mine.push_back(k);
+        mine.insert(mine.end(), modes[k].begin(), modes[k].end());
+      }
+    if (ranks->parallel())
+      for (const auto &part : Utilities::MPI::gather(ranks->communicator(), mine, 0))
+        for (std::size_t i = 0; i < part.size();)
+          {
+            const auto k = static_cast<unsigned int>(part[i]);
+            modes[k].assign(part.begin() + i + 1, part.begin() + i + 1 + edge_cells[k] * (disc.degree + 1));
+            i += 1 + modes[k].size();
+          }
+    auto   vertices     = vertex_values();
+    double total_inflow = boundary_inflow();
+    if (ranks->rank() == 0)
+      state_io(w, vertices, modes, total_inflow);
   }
 
   void
   NetworkProblem::load(ByteReader &r)
   {
-    state_io(r);
+    // every rank reads the whole state and keeps its edges
+    std::vector<double>              vertices(u.vertices.size());
+    std::vector<std::vector<double>> modes(u.edges.size());
+    double                           total_inflow = 0;
+    state_io(r, vertices, modes, total_inflow);
+    u.vertices = vertices;
+    inflow     = ranks->rank() == 0 ? total_inflow : 0.;
+    for (const unsigned int k : ranks->edges())
+      std::copy(modes[k].begin(), modes[k].end(), u.edges[k].begin());
   }
 
   void
@@ -885,17 +1083,18 @@ namespace granular_dg::network
     d.add("cfl", disc.cfl);
     d.add("mass_initial", balance.mass0);
     d.add("mass_final", mass());
-    d.add("boundary_inflow", inflow);
+    d.add("boundary_inflow", boundary_inflow());
     d.add("mass_balance_residual_max", balance.max_residual);
     d.add("mass_step_residual_max", balance.max_step);
+    const auto vertices = vertex_values();
     if (!junctions.empty())
       {
         d.add("vertex_value_initial", u00);
-        d.add("vertex_value_final", u.vertices[0]);
+        d.add("vertex_value_final", vertices[0]);
         d.add("rh_residual_final", rh_residual());
       }
     if (!net.is_star() && junctions.size() <= 100)
-      d.add("vertex_values_final", u.vertices);
+      d.add("vertex_values_final", vertices);
     d.add("total_variation_initial", tv0);
     d.add("total_variation_final", total_variation());
     d.add("total_variation_max", tv_max);

@@ -61,7 +61,12 @@ namespace granular_dg::network
   {
     const unsigned int per_cell = disc.profile_points > 0 ? std::max(2u, disc.profile_points) :
                                                             std::max(2u, disc.degree + 1);
-    const auto         samples = sample(per_cell);
+    // gathered on rank 0, which writes the file
+    const auto samples  = gathered_sample(per_cell);
+    const auto vertices = vertex_values();
+    const std::string name = snapshot_name("solution-", index, ".vtu");
+    if (ranks->rank() != 0)
+      return name;
     const GraphDrawing embed(net);
     std::vector<DataOutBase::Patch<1, 2>> patches;
     for (unsigned int k = 0; k < samples.size(); ++k)
@@ -83,12 +88,11 @@ namespace granular_dg::network
       {
         const Point<2> &p = embed.vertex(v);
         patches.push_back(line_patch({p, p},
-                                     {{{u.vertices[v], 0., 0., 0.}}, {{u.vertices[v], 0., 0., 0.}}},
+                                     {{{vertices[v], 0., 0., 0.}}, {{vertices[v], 0., 0., 0.}}},
                                      patches.size()));
       }
     DataOutBase::VtkFlags flags(time, index);
     flags.print_date_and_time = false;
-    const std::string name    = snapshot_name("solution-", index, ".vtu");
     std::ofstream     out(directory + "/" + name);
     DataOutBase::write_vtu(patches, {"u", "flux", "x_edge", "edge"}, {}, flags, out);
     record_output_file(directory, name);
@@ -101,7 +105,11 @@ namespace granular_dg::network
   {
     const unsigned int points = disc.profile_points > 0 ? disc.profile_points :
                                                           std::max(2u, disc.degree + 1);
-    const auto profile = sample(points);
+    // gathered on rank 0, which writes the files
+    const auto profile  = gathered_sample(points);
+    const auto vertices = vertex_values();
+    if (ranks->rank() != 0)
+      return;
     if (disc.profiles == Profiles::one_file)
       {
         std::vector<std::string> header{"edge", "x", "u", "flux"};
@@ -132,10 +140,10 @@ namespace granular_dg::network
                 << net.describe(k) << ", length " << format_number(e.length) << ", "
                 << e.flux.describe();
         if (net.is_star())
-          comment << "; vertex value " << format_number(u.vertices[0]);
+          comment << "; vertex value " << format_number(vertices[0]);
         for (const unsigned int v : {e.from, e.to})
           if (!net.is_star() && v != free_end)
-            comment << "; " << net.vertices[v].label << " value " << format_number(u.vertices[v]);
+            comment << "; " << net.vertices[v].label << " value " << format_number(vertices[v]);
         CsvWriter csv;
         csv.open(directory + "/" +
                    snapshot_name("profile-", index, "-edge-" + std::to_string(k + 1) + ".csv"),

@@ -204,9 +204,10 @@ namespace granular_dg::network
     Case::parse(ParameterHandler &prm, const RunParameters &common,
                 const dg::DiscretizationParameters &method)
     {
-      if (Utilities::MPI::n_mpi_processes(MPI_COMM_WORLD) > 1)
-        throw InputError("the network scene runs on one MPI rank (its edges are small serial "
-                         "1D meshes): run it without mpirun");
+      if (common.convergence && Utilities::MPI::n_mpi_processes(MPI_COMM_WORLD) > 1)
+        throw InputError("the network's convergence study (Convergence/enabled = true) runs on "
+                         "one MPI rank: run it without mpirun, or set Convergence/enabled = false "
+                         "for a single run on several ranks");
       require(method.scheme == dg::TimeScheme::ssp_rk3, "Time stepping/scheme",
               dg::time_scheme_name(method.scheme),
               "ssp_rk3 (the network's vertex coupling runs with Euler or SSP-RK3 stages; "
@@ -246,10 +247,7 @@ namespace granular_dg::network
           // the vertex values of a stationary state: given, or c_0 of the data
           NetworkProblem probe(c.input.graph, c.disc, c.input.data);
           probe.initialize();
-          std::vector<double> u0;
-          for (unsigned int v = 0; v < c.input.graph.vertices.size(); ++v)
-            u0.push_back(probe.vertex_value(v));
-          c.exact = std::make_shared<InitialData>(f, u0);
+          c.exact = std::make_shared<InitialData>(f, probe.vertex_values());
         }
       else if (exact_name != "none")
         {

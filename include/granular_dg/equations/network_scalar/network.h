@@ -13,6 +13,7 @@
 #include <granular_dg/dg/operator.h>
 #include <granular_dg/dg/parameters.h>
 #include <granular_dg/dg/time_integrator.h>
+#include <granular_dg/equations/network_scalar/edge_partition.h>
 #include <granular_dg/equations/network_scalar/exact_solution.h>
 #include <granular_dg/equations/network_scalar/graph.h>
 #include <granular_dg/equations/network_scalar/junction.h>
@@ -29,7 +30,9 @@ namespace granular_dg::network
   using EdgeLimiter = dg::ModalLimiter<1, System>;
 
   /// The state of the network: one DG vector per edge and the value of
-  /// every vertex. Has what dg::SSPRK3 needs of a vector.
+  /// every vertex. Has what dg::SSPRK3 needs of a vector. On several MPI
+  /// ranks a rank holds the vectors of its own edges (the others are empty)
+  /// and keeps the values of the vertices its edges meet.
   struct NetworkState
   {
     std::vector<dg::VectorType> edges;
@@ -101,6 +104,14 @@ namespace granular_dg::network
    * couples them. apply_stage() is a Runge-Kutta stage of the whole network
    * (edges and vertex), so dg::SSPRK3<NetworkState> and
    * dg::ForwardEuler<NetworkState> advance it.
+   *
+   * On several MPI ranks each rank discretises its own edges (EdgePartition)
+   * and updates the vertices they meet; the traces at vertices shared with
+   * other ranks are exchanged once per stage. The solution is the same bit
+   * for bit on any number of ranks. Sums over the network (mass, errors,
+   * total variation) and the time step are reduced over the ranks; output
+   * and checkpoints are gathered on rank 0 and do not depend on the number
+   * of ranks.
    */
   class NetworkProblem : public Evolution
   {
@@ -173,23 +184,34 @@ namespace granular_dg::network
     apply_stage(double t, const NetworkState &src, NetworkState &dst,
                 const dg::StageUpdate<NetworkState> &s) const;
 
+    /// of the whole network (all ranks)
     unsigned long n_dofs() const;
     unsigned long n_cells() const;
     unsigned int  n_stages() const;
     double        min_cell_size() const { return h_min; }
     const Graph  &graph() const { return net; }
     const Junction &junction(unsigned int v = 0) const { return junctions[v]; }
+    const EdgePartition &partition() const { return *ranks; }
+    /// u_0 of vertex v on a rank that owns one of its edges (every vertex on
+    /// one rank); vertex_values() has all of them on every rank.
     double        vertex_value(unsigned int v = 0) const { return u.vertices[v]; }
+    /// Collective: the value of every vertex, on every rank.
+    std::vector<double> vertex_values() const;
 
-    /// Total mass: integrals over the edges + dx_0 u_0 of every vertex.
+    /// Collective (as all sums and norms below): total mass, the integrals
+    /// over the edges + dx_0 u_0 of every vertex.
     double mass() const;
     /// int_0^t (inflow - outflow at the far ends) dt, as the integrator saw it.
-    double boundary_inflow() const { return inflow; }
+    double boundary_inflow() const { return ranks->sum(inflow); }
     /// L1 norm of the cell averages and the vertices (the scale of the drift).
     double l1_norm() const;
     /// Traces of the edges at the ends of vertex v (Junction::ends() order;
-    /// valid until the next call).
+    /// valid until the next call). At a vertex shared with other ranks they
+    /// are those of the last exchange_traces().
     const std::vector<double> &vertex_traces(const NetworkState &state, unsigned int v) const;
+    /// Collective: share the traces of state at the vertices whose edges lie
+    /// on several ranks (nothing to do on one rank).
+    void exchange_traces(const NetworkState &state) const;
     /// sum_in F - sum_out F for the current state at the vertex where it is
     /// largest in magnitude (0 without vertices).
     double rh_residual() const;
@@ -216,9 +238,12 @@ namespace granular_dg::network
     }
 
     /// The solution at equally spaced points of every cell (both ends
-    /// included): per edge the pairs (x, u).
+    /// included): per edge the pairs (x, u), of this rank's edges (the
+    /// others empty); gathered_sample() has all edges on rank 0.
     std::vector<std::vector<std::pair<double, double>>>
     sample(unsigned int points_per_cell) const;
+    std::vector<std::vector<std::pair<double, double>>>
+    gathered_sample(unsigned int points_per_cell) const;
 
   private:
     struct EdgeDiscretisation;
@@ -237,6 +262,9 @@ namespace granular_dg::network
     /// Inadmissible unless s is finite (and, at degree 0, in the range of
     /// the step).
     void   post_stage_checks(const NetworkState &s, double stage_time);
+    /// this rank's part of post_stage_checks (principle: check the maximum
+    /// principle against bounds)
+    void   local_checks(const NetworkState &s, double stage_time, bool principle);
     /// Degree 0: the range [min, max] of the cell averages, the vertex values
     /// and the free ends' Dirichlet data of the step from t to t + dt.
     std::pair<double, double> range_of_step(double t, double dt) const;
@@ -247,13 +275,20 @@ namespace granular_dg::network
     Inadmissible failure(double time, int edge, double x, double value,
                          const std::string &reason) const;
     double balance_residual() const;
+    /// this rank's part of mass() and total_variation()
+    double local_mass() const;
+    double local_total_variation() const;
+    /// Junction::balance at vertex v; in parallel a failure is held (NaN is
+    /// returned) until the stage's collective check reports it on every rank.
+    double balance_at(unsigned int v, const std::vector<double> &traces, double time) const;
     void   write_profiles(const std::string &directory, unsigned int index, double t) const;
     std::string write_vtu(const std::string &directory, unsigned int index, double t) const;
     /// What a checkpoint holds (the modes of every edge, the vertex values,
     /// the far-end inflow and the diagnostics), written and read alike.
     template <typename Archive>
     void
-    state_io(Archive &ar);
+    state_io(Archive &ar, std::vector<double> &vertices, std::vector<std::vector<double>> &modes,
+             double &total_inflow);
 
     Graph                 net;
     Discretisation        disc;
@@ -262,7 +297,15 @@ namespace granular_dg::network
     std::string           scene;
     /// one finite element for all edges
     std::unique_ptr<FESystem<1>>                     fe;
+    std::unique_ptr<EdgePartition>                   ranks;
+    /// cells of every edge
+    std::vector<unsigned int>                        edge_cells;
+    /// by edge number; null for the edges of other ranks
     std::vector<std::unique_ptr<EdgeDiscretisation>> edge;
+    /// the traces exchanged at the vertices shared by several ranks
+    mutable std::vector<double>                      exchanged;
+    /// a vertex balance that failed on this rank (parallel runs)
+    mutable std::optional<std::string>               pending_error;
     /// the Legendre modes' values at xi = 0 and xi = 1
     std::array<std::vector<double>, 2>               end_values;
     mutable std::vector<double>                      trace_buffer;
@@ -270,6 +313,7 @@ namespace granular_dg::network
     std::vector<std::shared_ptr<VertexData>>         vertex_data;
     NetworkState               u, last_good, benchmark_start;
     dg::SSPRK3<NetworkState>   rk3;
+    /// inflow: this rank's far ends
     double                     t = 0., inflow = 0., h_min = 0.;
     MassBalance                balance;
     double                     tv0 = 0, u00 = 0, tv_max = 0;
