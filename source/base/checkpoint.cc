@@ -176,6 +176,46 @@ namespace granular_dg
     }
   } // namespace
 
+  std::vector<std::string>
+  gather_bytes(const MPI_Comm comm, const std::string &mine, const std::size_t chunk)
+  {
+    const unsigned int rank = Utilities::MPI::this_mpi_process(comm);
+    const unsigned int n    = Utilities::MPI::n_mpi_processes(comm);
+    if (n == 1)
+      return {mine};
+    const auto sizes =
+      Utilities::MPI::gather(comm, static_cast<unsigned long long>(mine.size()), 0);
+    if (rank != 0)
+      {
+        for (std::size_t o = 0; o < mine.size(); o += chunk)
+          MPI_Send(mine.data() + o, static_cast<int>(std::min(chunk, mine.size() - o)), MPI_CHAR,
+                   0, 0, comm);
+        return {};
+      }
+    std::vector<std::string> all(n);
+    all[0] = mine;
+    for (unsigned int r = 1; r < n; ++r)
+      {
+        all[r].resize(sizes[r]);
+        for (std::size_t o = 0; o < all[r].size(); o += chunk)
+          MPI_Recv(&all[r][o], static_cast<int>(std::min(chunk, all[r].size() - o)), MPI_CHAR,
+                   r, 0, comm, MPI_STATUS_IGNORE);
+      }
+    return all;
+  }
+
+  void
+  broadcast_bytes(const MPI_Comm comm, std::string &bytes, const std::size_t chunk)
+  {
+    if (Utilities::MPI::n_mpi_processes(comm) == 1)
+      return;
+    const auto size =
+      Utilities::MPI::broadcast(comm, static_cast<unsigned long long>(bytes.size()), 0);
+    bytes.resize(size);
+    for (std::size_t o = 0; o < bytes.size(); o += chunk)
+      MPI_Bcast(&bytes[o], static_cast<int>(std::min(chunk, bytes.size() - o)), MPI_CHAR, 0, comm);
+  }
+
   std::uint64_t
   fnv1a(const std::string &bytes)
   {
@@ -434,13 +474,7 @@ namespace granular_dg
     c.file = Utilities::MPI::broadcast(comm, c.file, 0);
     c.step = Utilities::MPI::broadcast(comm, c.step, 0);
     c.time = Utilities::MPI::broadcast(comm, c.time, 0);
-    unsigned long long size = Utilities::MPI::broadcast(comm, 
-                                                        static_cast<unsigned long long>(
-                                                          c.payload.size()),
-                                                        0);
-    c.payload.resize(size);
-    if (Utilities::MPI::n_mpi_processes(comm) > 1 && size > 0)
-      MPI_Bcast(c.payload.data(), static_cast<int>(size), MPI_CHAR, 0, comm);
+    broadcast_bytes(comm, c.payload);
     return c;
   }
 

@@ -12,3 +12,8 @@ granular_dg_unit_test(unit/rk_stability_limits NUMDIFF -a 2e-4 -r 0)
 # law) within 2 ulp of std::exp over the finite range, lane- and
 # width-independent, special values right; it fails itself otherwise.
 granular_dg_unit_test(unit/vectorized_exp NUMDIFF -r 1e-15)
+# The byte transport of checkpoints (gather_bytes, broadcast_bytes) in chunks
+# of 7 bytes on 3 ranks: every byte arrives (an empty part too); fails itself
+# otherwise. RUN_SERIAL: three processes on two cores.
+granular_dg_unit_test(unit/gather_bytes MPI 3 NUMDIFF -a 0 -r 0 LABELS mpi)
+set_tests_properties(unit/gather_bytes PROPERTIES RUN_SERIAL TRUE)

@@ -217,6 +217,18 @@ namespace granular_dg
   read_checkpoint(const std::string &directory, const CheckpointIdentity &id,
                   const ParameterList &parameters, MPI_Comm comm);
 
+  /// Every rank's bytes on rank 0, in rank order (an empty list elsewhere),
+  /// of any size: point-to-point messages of at most `chunk` bytes. (MPI
+  /// counts are int: deal.II's gather and one MPI_Bcast stop at 2 GB, the
+  /// checkpoint of ~2.5 10^8 DoFs.)
+  std::vector<std::string>
+  gather_bytes(MPI_Comm comm, const std::string &mine, std::size_t chunk = std::size_t(1) << 30);
+
+  /// Rank 0's bytes on every rank, of any size (broadcasts of at most
+  /// `chunk` bytes).
+  void
+  broadcast_bytes(MPI_Comm comm, std::string &bytes, std::size_t chunk = std::size_t(1) << 30);
+
   /// FNV-1a, 64 bit, of a byte string (the payload checksum).
   std::uint64_t
   fnv1a(const std::string &bytes);

@@ -40,7 +40,7 @@ namespace granular_dg::dg
             }
         }
     const MPI_Comm comm = u.get_mpi_communicator();
-    const auto     all  = Utilities::MPI::gather(comm, mine, 0);
+    const auto     all  = gather_bytes(comm, mine);
     if (Utilities::MPI::this_mpi_process(comm) != 0)
       return "";
     std::vector<std::pair<Key, const char *>> cells;

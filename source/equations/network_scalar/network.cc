@@ -10,6 +10,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <numeric>
 #include <optional>
 
@@ -1032,13 +1033,23 @@ namespace granular_dg::network
         mine.insert(mine.end(), modes[k].begin(), modes[k].end());
       }
     if (ranks->parallel())
-      for (const auto &part : Utilities::MPI::gather(ranks->communicator(), mine, 0))
-        for (std::size_t i = 0; i < part.size();)
+      {
+        // (as bytes: any size, gather_bytes)
+        const std::string bytes(reinterpret_cast<const char *>(mine.data()),
+                                mine.size() * sizeof(double));
+        for (const auto &b : gather_bytes(ranks->communicator(), bytes))
           {
-            const auto k = static_cast<unsigned int>(part[i]);
-            modes[k].assign(part.begin() + i + 1, part.begin() + i + 1 + edge_cells[k] * (disc.degree + 1));
-            i += 1 + modes[k].size();
+            std::vector<double> part(b.size() / sizeof(double));
+            std::memcpy(part.data(), b.data(), b.size());
+            for (std::size_t i = 0; i < part.size();)
+              {
+                const auto k = static_cast<unsigned int>(part[i]);
+                modes[k].assign(part.begin() + i + 1,
+                                part.begin() + i + 1 + edge_cells[k] * (disc.degree + 1));
+                i += 1 + modes[k].size();
+              }
           }
+      }
     auto   vertices     = vertex_values();
     double total_inflow = boundary_inflow();
     if (ranks->rank() == 0)
