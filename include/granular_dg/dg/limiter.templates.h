@@ -92,6 +92,10 @@ namespace granular_dg::dg
   {
     cells.reinit(dof_handler);
     troubled.assign(cells.n_owned(), 0);
+    // a limiter that never limits keeps no tables: apply() returns at once
+    // (8 bytes per DoF of the 2D strip at P2, doc/program.md)
+    if (type == LimiterType::none)
+      return;
     // owned cells and the ghost neighbours (physics_variables needs theirs)
     coefficients.resize(cells.n_cells());
     for (unsigned int i = 0; i < cells.n_cells(); ++i)
@@ -103,6 +107,8 @@ namespace granular_dg::dg
   void
   ModalLimiter<dim, Physics>::build_tables()
   {
+    if (type == LimiterType::none)
+      return;
     const unsigned int n_modes = cells.n_modes();
     base.resize(cells.n_cells());
     for (unsigned int i = 0; i < cells.n_cells(); ++i)
