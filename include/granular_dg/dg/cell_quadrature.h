@@ -121,18 +121,27 @@ namespace granular_dg::dg
             }
     }
 
-    /// The integral of every component: |K| times the mean (mode 0) per cell.
+    /// The integral of every component: |K| times the mean (mode 0) per cell
+    /// (collective).
     template <typename VectorType>
     std::vector<double>
     integrals(const VectorType &u) const
     {
       std::vector<double> sums(cells->n_components(), 0.);
-      for (unsigned int c = 0; c < cells->n_owned(); ++c)
-        for (unsigned int i = 0; i < sums.size(); ++i)
-          sums[i] += measure(c) * u.local_element(cells->index(c, i, 0));
-      for (auto &s : sums)
-        s = Utilities::MPI::sum(s, u.get_mpi_communicator());
+      for (unsigned int i = 0; i < sums.size(); ++i)
+        sums[i] = Utilities::MPI::sum(local_integral(u, i), u.get_mpi_communicator());
       return sums;
+    }
+
+    /// This rank's part of integrals() of component i (no reduction).
+    template <typename VectorType>
+    double
+    local_integral(const VectorType &u, const unsigned int i) const
+    {
+      double sum = 0;
+      for (unsigned int c = 0; c < cells->n_owned(); ++c)
+        sum += measure(c) * u.local_element(cells->index(c, i, 0));
+      return sum;
     }
 
     /// sum over cells and points of |K| w_q density(c, q) (collective)

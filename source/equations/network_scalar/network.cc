@@ -288,8 +288,7 @@ namespace granular_dg::network
     i.method.add("limiter", disc.limiter_name);
     i.method.add("scheme", integrator);
     i.method.add("n_edges", static_cast<long long>(net.edges.size()));
-    const unsigned int points = disc.profile_points > 0 ? disc.profile_points :
-                                                          std::max(2u, disc.degree + 1);
+    const unsigned int points = profile_points();
     i.bytes_per_snapshot = i.n_cells * points * (disc.write_vtu ? 60. : 0.) +
                            i.n_cells * points * 40.;
     return i;
@@ -736,16 +735,10 @@ namespace granular_dg::network
     for (const unsigned int v : ranks->vertices())
       if (ranks->reports_vertex(v))
         m += junctions[v].width() * u.vertices[v];
-    // CellQuadrature::integrals of every edge, without its allocation and
-    // its reduction over the edge's (one-rank) communicator
+    // (local_integral: without integrals()' vector and its reduction over
+    // the edge's one-rank communicator, once per edge and step)
     for (const unsigned int k : ranks->edges())
-      {
-        const auto &layout = edge[k]->layout();
-        double      integral = 0;
-        for (unsigned int c = 0; c < layout.n_owned(); ++c)
-          integral += edge[k]->quadrature.measure(c) * u.edges[k].local_element(layout.index(c, 0, 0));
-        m += integral;
-      }
+      m += edge[k]->quadrature.local_integral(u.edges[k], 0);
     return m;
   }
 
@@ -911,30 +904,48 @@ namespace granular_dg::network
     auto out = sample(points_per_cell);
     if (!ranks->parallel())
       return out;
-    // this rank's edges as (k, n, x_0, u_0, ..., x_n-1, u_n-1)
+    // the pairs of every edge as x_0, u_0, x_1, u_1, ...
+    std::vector<std::vector<double>> flat(out.size());
+    for (const unsigned int k : ranks->edges())
+      for (const auto &[x, value] : out[k])
+        flat[k].insert(flat[k].end(), {x, value});
+    gather_edge_values(flat);
+    for (unsigned int k = 0; k < flat.size(); ++k)
+      {
+        out[k].resize(flat[k].size() / 2);
+        for (std::size_t j = 0; j < out[k].size(); ++j)
+          out[k][j] = {flat[k][2 * j], flat[k][2 * j + 1]};
+      }
+    return out;
+  }
+
+  void
+  NetworkProblem::gather_edge_values(std::vector<std::vector<double>> &values) const
+  {
+    if (!ranks->parallel())
+      return;
+    // this rank's edges as (k, n, its n values), as bytes (gather_bytes:
+    // any size)
     std::vector<double> mine;
     for (const unsigned int k : ranks->edges())
       {
-        mine.push_back(k);
-        mine.push_back(out[k].size());
-        for (const auto &[x, value] : out[k])
+        mine.insert(mine.end(), {double(k), double(values[k].size())});
+        mine.insert(mine.end(), values[k].begin(), values[k].end());
+      }
+    const std::string bytes(reinterpret_cast<const char *>(mine.data()),
+                            mine.size() * sizeof(double));
+    for (const auto &b : gather_bytes(ranks->communicator(), bytes))
+      {
+        std::vector<double> part(b.size() / sizeof(double));
+        std::memcpy(part.data(), b.data(), b.size());
+        for (std::size_t i = 0; i < part.size();)
           {
-            mine.push_back(x);
-            mine.push_back(value);
+            const auto k = static_cast<unsigned int>(part[i]);
+            const auto n = static_cast<std::size_t>(part[i + 1]);
+            values[k].assign(part.begin() + i + 2, part.begin() + i + 2 + n);
+            i += 2 + n;
           }
       }
-    const auto all = Utilities::MPI::gather(ranks->communicator(), mine, 0);
-    for (const auto &part : all)
-      for (std::size_t i = 0; i < part.size();)
-        {
-          const auto k = static_cast<unsigned int>(part[i]);
-          const auto n = static_cast<std::size_t>(part[i + 1]);
-          out[k].resize(n);
-          for (std::size_t j = 0; j < n; ++j)
-            out[k][j] = {part[i + 2 + 2 * j], part[i + 3 + 2 * j]};
-          i += 2 + 2 * n;
-        }
-    return out;
   }
 
   std::vector<std::string>
@@ -1025,31 +1036,9 @@ namespace granular_dg::network
     // every edge's modes in the order of the graph, on rank 0 (which writes
     // the checkpoint): the file does not depend on the number of ranks
     std::vector<std::vector<double>> modes(u.edges.size());
-    std::vector<double>              mine;
     for (const unsigned int k : ranks->edges())
-      {
-        modes[k].assign(u.edges[k].begin(), u.edges[k].end());
-        mine.push_back(k);
-        mine.insert(mine.end(), modes[k].begin(), modes[k].end());
-      }
-    if (ranks->parallel())
-      {
-        // (as bytes: any size, gather_bytes)
-        const std::string bytes(reinterpret_cast<const char *>(mine.data()),
-                                mine.size() * sizeof(double));
-        for (const auto &b : gather_bytes(ranks->communicator(), bytes))
-          {
-            std::vector<double> part(b.size() / sizeof(double));
-            std::memcpy(part.data(), b.data(), b.size());
-            for (std::size_t i = 0; i < part.size();)
-              {
-                const auto k = static_cast<unsigned int>(part[i]);
-                modes[k].assign(part.begin() + i + 1,
-                                part.begin() + i + 1 + edge_cells[k] * (disc.degree + 1));
-                i += 1 + modes[k].size();
-              }
-          }
-      }
+      modes[k].assign(u.edges[k].begin(), u.edges[k].end());
+    gather_edge_values(modes);
     auto   vertices     = vertex_values();
     double total_inflow = boundary_inflow();
     if (ranks->rank() == 0)

@@ -57,16 +57,10 @@ namespace granular_dg::network
 
   std::string
   NetworkProblem::write_vtu(const std::string &directory, const unsigned int index,
-                            const double time) const
+                            const double time, const Samples &samples,
+                            const std::vector<double> &vertices) const
   {
-    const unsigned int per_cell = disc.profile_points > 0 ? std::max(2u, disc.profile_points) :
-                                                            std::max(2u, disc.degree + 1);
-    // gathered on rank 0, which writes the file
-    const auto samples  = gathered_sample(per_cell);
-    const auto vertices = vertex_values();
-    const std::string name = snapshot_name("solution-", index, ".vtu");
-    if (ranks->rank() != 0)
-      return name;
+    const unsigned int per_cell = vtu_points();
     const GraphDrawing embed(net);
     std::vector<DataOutBase::Patch<1, 2>> patches;
     for (unsigned int k = 0; k < samples.size(); ++k)
@@ -93,6 +87,7 @@ namespace granular_dg::network
       }
     DataOutBase::VtkFlags flags(time, index);
     flags.print_date_and_time = false;
+    const std::string name    = snapshot_name("solution-", index, ".vtu");
     std::ofstream     out(directory + "/" + name);
     DataOutBase::write_vtu(patches, {"u", "flux", "x_edge", "edge"}, {}, flags, out);
     record_output_file(directory, name);
@@ -101,15 +96,9 @@ namespace granular_dg::network
 
   void
   NetworkProblem::write_profiles(const std::string &directory, const unsigned int index,
-                                 const double time) const
+                                 const double time, const Samples &profile,
+                                 const std::vector<double> &vertices) const
   {
-    const unsigned int points = disc.profile_points > 0 ? disc.profile_points :
-                                                          std::max(2u, disc.degree + 1);
-    // gathered on rank 0, which writes the files
-    const auto profile  = gathered_sample(points);
-    const auto vertices = vertex_values();
-    if (ranks->rank() != 0)
-      return;
     if (disc.profiles == Profiles::one_file)
       {
         std::vector<std::string> header{"edge", "x", "u", "flux"};
@@ -162,11 +151,21 @@ namespace granular_dg::network
   NetworkProblem::write_snapshot(const std::string &directory, const unsigned int index,
                                  const double time)
   {
+    // gathered on rank 0, which writes the files (once when the VTU and the
+    // profiles sample alike)
+    const auto    vertices = vertex_values();
+    const bool    vtu = disc.write_vtu, profiles = disc.profiles != Profiles::none;
+    const Samples vtu_samples = vtu ? gathered_sample(vtu_points()) : Samples();
+    const Samples profile_samples =
+      !profiles ? Samples() :
+      vtu && vtu_points() == profile_points() ? vtu_samples : gathered_sample(profile_points());
     SnapshotFiles files;
-    if (disc.write_vtu)
-      files.pvd_entry = files.main_file = write_vtu(directory, index, time);
-    if (disc.profiles != Profiles::none)
-      write_profiles(directory, index, time);
+    if (vtu)
+      files.pvd_entry = files.main_file = snapshot_name("solution-", index, ".vtu");
+    if (ranks->rank() == 0 && vtu)
+      write_vtu(directory, index, time, vtu_samples, vertices);
+    if (ranks->rank() == 0 && profiles)
+      write_profiles(directory, index, time, profile_samples, vertices);
     if (files.main_file.empty())
       files.main_file = "profile files";
     return files;

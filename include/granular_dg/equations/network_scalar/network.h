@@ -19,6 +19,7 @@
 #include <granular_dg/equations/network_scalar/junction.h>
 #include <granular_dg/equations/network_scalar/system.h>
 
+#include <algorithm>
 #include <cmath>
 #include <memory>
 #include <optional>
@@ -275,14 +276,32 @@ namespace granular_dg::network
     Inadmissible failure(double time, int edge, double x, double value,
                          const std::string &reason) const;
     double balance_residual() const;
+    /// Collective: values[k] of every edge k on rank 0 (each rank fills
+    /// those of its edges).
+    void gather_edge_values(std::vector<std::vector<double>> &values) const;
     /// this rank's part of mass() and total_variation()
     double local_mass() const;
     double local_total_variation() const;
     /// Junction::balance at vertex v; in parallel a failure is held (NaN is
     /// returned) until the stage's collective check reports it on every rank.
     double balance_at(unsigned int v, const std::vector<double> &traces, double time) const;
-    void   write_profiles(const std::string &directory, unsigned int index, double t) const;
-    std::string write_vtu(const std::string &directory, unsigned int index, double t) const;
+    using Samples = std::vector<std::vector<std::pair<double, double>>>;
+    /// sample points per cell of the VTU (at least 2) and of the profiles
+    unsigned int vtu_points() const
+    {
+      return disc.profile_points > 0 ? std::max(2u, disc.profile_points) :
+                                       std::max(2u, disc.degree + 1);
+    }
+    unsigned int profile_points() const
+    {
+      return disc.profile_points > 0 ? disc.profile_points : std::max(2u, disc.degree + 1);
+    }
+    /// rank 0: the files of a snapshot from the gathered samples and vertex
+    /// values
+    void   write_profiles(const std::string &directory, unsigned int index, double t,
+                          const Samples &profile, const std::vector<double> &vertices) const;
+    std::string write_vtu(const std::string &directory, unsigned int index, double t,
+                          const Samples &samples, const std::vector<double> &vertices) const;
     /// What a checkpoint holds (the modes of every edge, the vertex values,
     /// the far-end inflow and the diagnostics), written and read alike.
     template <typename Archive>
