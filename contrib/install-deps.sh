@@ -8,6 +8,7 @@ packages=(
   build-essential cmake g++ make
   libdeal.ii-dev          # deal.II 9.4.1 with MPI, p4est, Trilinos, HDF5, SUNDIALS, Boost
   libboost-dev            # Boost.Math (Bessel, quadrature, roots), Boost.odeint
+  zlib1g-dev              # CRC-32 of checkpoints (crc32_combine over MPI ranks)
   openmpi-bin libopenmpi-dev
   numdiff                 # regression-test comparison
   libdeal.ii-doc          # deal.II's examples: step-67, the throughput comparator of contrib/benchmark.py

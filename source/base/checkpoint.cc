@@ -4,6 +4,8 @@
 #include <granular_dg/base/checkpoint.h>
 #include <granular_dg/base/output.h>
 
+#include <zlib.h>
+
 #include <algorithm>
 #include <csignal>
 #include <cstdio>
@@ -20,7 +22,7 @@ namespace granular_dg
 
   namespace
   {
-    const char *const magic = "granular_dg checkpoint 3";
+    const char *const magic = "granular_dg checkpoint 4";
 
     volatile std::sig_atomic_t received_signal = 0;
 
@@ -98,13 +100,66 @@ namespace granular_dg
       return buffer;
     }
 
-    /// A checkpoint file parsed: its header entries, parameters and payload.
+    /// A checkpoint file parsed: its header entries, parameters, payload,
+    /// where its shared blocks lie and their checksums (not yet checked).
     struct ParsedFile
     {
       std::map<std::string, std::string> header;
       ParameterList                      parameters;
       std::string                        payload;
+      SharedBlocks                       blocks;
+      std::vector<std::uint32_t>         crcs;
     };
+
+    /// "blocks = 12 34" -> {12, 34}
+    std::vector<std::uint64_t>
+    block_sizes(const std::string &list)
+    {
+      std::vector<std::uint64_t> sizes;
+      std::istringstream         s(list);
+      std::uint64_t              n;
+      while (s >> n)
+        sizes.push_back(n);
+      if (!s.eof())
+        throw RunError("garbled blocks line");
+      return sizes;
+    }
+
+    /// After the payload: the shared blocks and the line of their checksums
+    /// that ends the file.
+    void
+    parse_blocks(std::ifstream &in, const fs::path &file, ParsedFile &f)
+    {
+      const auto it = f.header.find("blocks");
+      if (it == f.header.end())
+        throw RunError("garbled header (no blocks line)");
+      f.blocks.file  = file.string();
+      f.blocks.sizes = block_sizes(it->second);
+      std::uint64_t position = static_cast<std::uint64_t>(in.tellg()), total = 0;
+      for (const auto s : f.blocks.sizes)
+        {
+          f.blocks.offsets.push_back(position + total);
+          total += s;
+        }
+      std::error_code     ec;
+      const std::uint64_t file_size = fs::file_size(file, ec);
+      if (ec || file_size < position + total)
+        throw RunError("truncated: the shared blocks have " +
+                       std::to_string(ec ? 0 : file_size - std::min(file_size, position)) +
+                       " of " + std::to_string(total) + " bytes");
+      in.seekg(static_cast<std::streamoff>(position + total));
+      std::string line;
+      if (!std::getline(in, line) || in.eof() || line.rfind("checksums", 0) != 0)
+        throw RunError("truncated: the checksums at its end are missing");
+      std::istringstream s(line.substr(9));
+      std::string        sum;
+      while (s >> sum)
+        f.crcs.push_back(static_cast<std::uint32_t>(std::stoul(sum, nullptr, 16)));
+      if (f.crcs.size() != f.blocks.sizes.size())
+        throw RunError("garbled checksums line");
+      if (in.peek() != std::char_traits<char>::eof())
+        throw RunError("bytes after the checksums");
+    }
 
     /// Read and verify one file; a RunError says why it is unusable.
     ParsedFile
@@ -135,10 +190,9 @@ namespace granular_dg
               if (static_cast<std::size_t>(in.gcount()) != size)
                 throw RunError("truncated: the payload has " + std::to_string(in.gcount()) +
                                " of " + std::to_string(size) + " bytes");
-              if (in.peek() != std::char_traits<char>::eof())
-                throw RunError("bytes after the payload");
               if (hex(fnv1a(f.payload)) != sum)
                 throw RunError("checksum mismatch (the file is corrupt)");
+              parse_blocks(in, file, f);
               return f;
             }
           const auto eq = line.find(" = ");
@@ -226,6 +280,48 @@ namespace granular_dg
         h *= 1099511628211ull;
       }
     return h;
+  }
+
+  std::uint32_t
+  crc32_of(const char *data, std::uint64_t size)
+  {
+    uLong crc = crc32(0L, Z_NULL, 0);
+    for (std::uint64_t o = 0; o < size; o += 1u << 30)
+      crc = crc32(crc, reinterpret_cast<const Bytef *>(data + o),
+                  static_cast<uInt>(std::min<std::uint64_t>(size - o, 1u << 30)));
+    return static_cast<std::uint32_t>(crc);
+  }
+
+  std::uint32_t
+  combined_crc32(const MPI_Comm comm, const std::uint32_t crc, const std::uint64_t size)
+  {
+    const unsigned int n = Utilities::MPI::n_mpi_processes(comm);
+    if (n == 1)
+      return crc;
+    const std::uint64_t        mine[2] = {crc, size};
+    std::vector<std::uint64_t> all(2 * n);
+    MPI_Gather(mine, 2, MPI_UINT64_T, all.data(), 2, MPI_UINT64_T, 0, comm);
+    if (Utilities::MPI::this_mpi_process(comm) != 0)
+      return 0;
+    uLong combined = crc32(0L, Z_NULL, 0);
+    for (unsigned int r = 0; r < n; ++r)
+      combined = crc32_combine(combined, all[2 * r], static_cast<z_off_t>(all[2 * r + 1]));
+    return static_cast<std::uint32_t>(combined);
+  }
+
+  std::string
+  SharedBlocks::read(const unsigned int block, const std::uint64_t offset,
+                     const std::uint64_t size) const
+  {
+    std::string   bytes(size, '\0');
+    std::ifstream in(file, std::ios::binary);
+    in.seekg(static_cast<std::streamoff>(offsets.at(block) + offset));
+    in.read(bytes.data(), static_cast<std::streamsize>(size));
+    if (!in || static_cast<std::uint64_t>(in.gcount()) != size)
+      throw RunError("checkpoint " + file + " cannot be read (bytes " +
+                     std::to_string(offsets.at(block) + offset) + " to " +
+                     std::to_string(offsets.at(block) + offset + size) + ")");
+    return bytes;
   }
 
   ParameterList
@@ -353,128 +449,318 @@ namespace granular_dg
     return false;
   }
 
+  namespace
+  {
+    /// Rank 0: the header and the payload into a new file; returns where the
+    /// shared blocks begin.
+    std::uint64_t
+    write_head(const fs::path &tmp, const CheckpointIdentity &id, const ParameterList &parameters,
+               const unsigned long step, const double time, const ByteWriter &payload,
+               const std::vector<std::uint64_t> &block_sizes, const unsigned int n_ranks)
+    {
+      std::ofstream out(tmp, std::ios::binary);
+      char          t[40];
+      std::snprintf(t, sizeof(t), "%.17g", time);
+      out << magic << '\n'
+          << "scene = " << id.scene << '\n'
+          << "physics = " << id.physics << '\n'
+          << "dim = " << id.dim << '\n'
+          << "degree = " << id.degree << '\n'
+          << "n_cells = " << id.n_cells << '\n'
+          << "n_dofs = " << id.n_dofs << '\n'
+          << "n_mpi_ranks = " << n_ranks << '\n'
+          << "step = " << step << '\n'
+          << "time = " << t << '\n';
+      for (const auto &[key, value] : parameters)
+        out << "parameter " << key << " = " << value << '\n';
+      out << "blocks = ";
+      for (unsigned int b = 0; b < block_sizes.size(); ++b)
+        out << (b > 0 ? " " : "") << block_sizes[b];
+      out << '\n' << "payload " << payload.bytes.size() << ' ' << hex(fnv1a(payload.bytes)) << '\n';
+      out.write(payload.bytes.data(), payload.bytes.size());
+      out.flush();
+      if (!out)
+        throw RunError("cannot write checkpoint " + tmp.string() + " (disk full or not writable)");
+      return static_cast<std::uint64_t>(out.tellp());
+    }
+
+    /// Every rank: its pieces of the shared blocks into the file at
+    /// `start` + the block's offset + the pieces of the ranks before it
+    /// (MPI-IO, independent writes of at most 1 GB); false on an error.
+    bool
+    write_pieces(const fs::path &tmp, const std::uint64_t start, const ByteWriter &payload,
+                 const std::vector<std::uint64_t> &block_starts,
+                 const std::vector<std::uint64_t> &before, const MPI_Comm comm)
+    {
+      MPI_File file;
+      if (MPI_File_open(comm, tmp.c_str(), MPI_MODE_WRONLY, MPI_INFO_NULL, &file) != MPI_SUCCESS)
+        return false;
+      bool ok = true;
+      for (unsigned int b = 0; b < payload.blocks.size(); ++b)
+        {
+          const std::string &mine = payload.blocks[b];
+          for (std::size_t o = 0; o < mine.size() && ok; o += std::size_t(1) << 30)
+            {
+              const int count = static_cast<int>(std::min(mine.size() - o, std::size_t(1) << 30));
+              const auto at   = static_cast<MPI_Offset>(start + block_starts[b] + before[b] + o);
+              ok = MPI_File_write_at(file, at, mine.data() + o, count, MPI_CHAR,
+                                     MPI_STATUS_IGNORE) == MPI_SUCCESS;
+            }
+        }
+      return MPI_File_close(&file) == MPI_SUCCESS && ok;
+    }
+
+    /// Rank 0: the checksums line, the rename and the rotation.
+    void
+    finish_file(const fs::path &tmp, const fs::path &file, const std::string &directory,
+                const std::vector<std::uint32_t> &crcs)
+    {
+      {
+        std::ofstream out(tmp, std::ios::binary | std::ios::app);
+        out << "checksums";
+        for (const auto crc : crcs)
+          {
+            char buffer[9];
+            std::snprintf(buffer, sizeof(buffer), "%08x", static_cast<unsigned int>(crc));
+            out << ' ' << buffer;
+          }
+        out << '\n';
+        out.flush();
+        if (!out)
+          throw RunError("cannot write checkpoint " + tmp.string() +
+                         " (disk full or not writable)");
+      }
+      std::error_code ec;
+      fs::rename(tmp, file);
+      // keep the newest two; drop what a run killed while writing left
+      const auto files = checkpoint_files(directory);
+      for (unsigned int i = 2; i < files.size(); ++i)
+        fs::remove(files[i], ec);
+      for (const auto &entry : fs::directory_iterator(file.parent_path(), ec))
+        {
+          const std::string n = entry.path().filename().string();
+          if (n.size() > 9 && n[0] == '.' && n.compare(n.size() - 9, 9, ".ckpt.tmp") == 0)
+            fs::remove(entry.path(), ec);
+        }
+    }
+
+    /// An error on any rank, as one message on every rank ("" if none).
+    std::string
+    agree_on_error(const MPI_Comm comm, std::string error)
+    {
+      if (Utilities::MPI::n_mpi_processes(comm) == 1)
+        return error;
+      const unsigned int rank   = Utilities::MPI::this_mpi_process(comm);
+      const unsigned int failed = Utilities::MPI::min(error.empty() ? ~0u : rank, comm);
+      if (failed == ~0u)
+        return "";
+      return Utilities::MPI::broadcast(comm, error, failed);
+    }
+  } // namespace
+
   std::string
   write_checkpoint(const std::string &directory, const CheckpointIdentity &id,
                    const ParameterList &parameters, const unsigned long step, const double time,
-                   const std::string &payload, const MPI_Comm comm)
+                   const ByteWriter &payload, const MPI_Comm comm)
   {
-    const fs::path dir  = checkpoint_directory(directory);
-    char           name[32];
+    const unsigned int n_ranks  = Utilities::MPI::n_mpi_processes(comm);
+    const bool         root     = Utilities::MPI::this_mpi_process(comm) == 0;
+    const unsigned int n_blocks = payload.blocks.size();
+    const fs::path     dir      = checkpoint_directory(directory);
+    char               name[32];
     std::snprintf(name, sizeof(name), "step-%010lu.ckpt", step);
-    const fs::path file = dir / name;
-    if (Utilities::MPI::this_mpi_process(comm) == 0)
+    const fs::path file = dir / name, tmp = dir / (std::string(".") + name + ".tmp");
+    // a second Ctrl-C must not cut the checkpoint in half: SIGINT and SIGTERM
+    // wait until it is renamed into place
+    const SignalBlock block;
+
+    // where each block starts and where this rank's pieces go in them
+    std::vector<std::uint64_t> mine(n_blocks), before(n_blocks, 0), starts(n_blocks, 0);
+    for (unsigned int b = 0; b < n_blocks; ++b)
+      mine[b] = payload.blocks[b].size();
+    std::vector<std::uint64_t> sizes = mine;
+    if (n_ranks > 1 && n_blocks > 0)
       {
-        // a second Ctrl-C must not cut the checkpoint in half: SIGINT and
-        // SIGTERM wait until it is renamed into place
-        const SignalBlock block;
-        std::error_code   ec;
-        fs::create_directories(dir, ec);
-        const fs::path tmp = dir / (std::string(".") + name + ".tmp");
-        {
-          std::ofstream out(tmp, std::ios::binary);
-          char          t[40];
-          std::snprintf(t, sizeof(t), "%.17g", time);
-          out << magic << '\n'
-              << "scene = " << id.scene << '\n'
-              << "physics = " << id.physics << '\n'
-              << "dim = " << id.dim << '\n'
-              << "degree = " << id.degree << '\n'
-              << "n_cells = " << id.n_cells << '\n'
-              << "n_dofs = " << id.n_dofs << '\n'
-              << "n_mpi_ranks = " << Utilities::MPI::n_mpi_processes(comm) << '\n'
-              << "step = " << step << '\n'
-              << "time = " << t << '\n';
-          for (const auto &[key, value] : parameters)
-            out << "parameter " << key << " = " << value << '\n';
-          out << "payload " << payload.size() << ' ' << hex(fnv1a(payload)) << '\n';
-          out.write(payload.data(), payload.size());
-          out.flush();
-          if (!out)
-            throw RunError("cannot write checkpoint " + tmp.string() +
-                           " (disk full or not writable)");
-        }
-        fs::rename(tmp, file);
-        // keep the newest two; drop what a run killed while writing left
-        const auto files = checkpoint_files(directory);
-        for (unsigned int i = 2; i < files.size(); ++i)
-          fs::remove(files[i], ec);
-        for (const auto &entry : fs::directory_iterator(dir, ec))
-          {
-            const std::string n = entry.path().filename().string();
-            if (n.size() > 9 && n[0] == '.' && n.compare(n.size() - 9, 9, ".ckpt.tmp") == 0)
-              fs::remove(entry.path(), ec);
-          }
+        MPI_Exscan(mine.data(), before.data(), n_blocks, MPI_UINT64_T, MPI_SUM, comm);
+        if (root)
+          std::fill(before.begin(), before.end(), 0);
+        MPI_Allreduce(mine.data(), sizes.data(), n_blocks, MPI_UINT64_T, MPI_SUM, comm);
       }
-    MPI_Barrier(comm);
+    for (unsigned int b = 1; b < n_blocks; ++b)
+      starts[b] = starts[b - 1] + sizes[b - 1];
+
+    std::string   error;
+    std::uint64_t start = 0;
+    if (root)
+      try
+        {
+          std::error_code ec;
+          fs::create_directories(dir, ec);
+          start = write_head(tmp, id, parameters, step, time, payload, sizes, n_ranks);
+          if (n_ranks == 1)
+            {
+              std::ofstream out(tmp, std::ios::binary | std::ios::app);
+              for (const auto &piece : payload.blocks)
+                out.write(piece.data(), piece.size());
+              out.flush();
+              if (!out)
+                throw RunError("cannot write checkpoint " + tmp.string() +
+                               " (disk full or not writable)");
+            }
+        }
+      catch (const RunError &e)
+        {
+          error = e.what();
+        }
+    if (n_ranks > 1)
+      {
+        if (!(error = agree_on_error(comm, error)).empty())
+          throw RunError(error);
+        start = Utilities::MPI::broadcast(comm, start, 0);
+        if (!write_pieces(tmp, start, payload, starts, before, comm))
+          error = "cannot write checkpoint " + tmp.string() + " through MPI-IO";
+      }
+    if (!(error = agree_on_error(comm, error)).empty())
+      throw RunError(error);
+
+    std::vector<std::uint32_t> crcs(n_blocks);
+    for (unsigned int b = 0; b < n_blocks; ++b)
+      crcs[b] = combined_crc32(comm, crc32_of(payload.blocks[b].data(), mine[b]), mine[b]);
+    if (root)
+      try
+        {
+          finish_file(tmp, file, directory, crcs);
+        }
+      catch (const RunError &e)
+        {
+          error = e.what();
+        }
+    if (!(error = agree_on_error(comm, error)).empty())
+      throw RunError(error);
     return file.string();
   }
+
+  namespace
+  {
+    /// Whether the shared blocks of a parsed checkpoint pass their checksums:
+    /// each rank reads an equal share of every block. Collective.
+    bool
+    blocks_intact(const SharedBlocks &blocks, const std::vector<std::uint32_t> &crcs,
+                  const MPI_Comm comm)
+    {
+      const std::uint64_t n    = Utilities::MPI::n_mpi_processes(comm);
+      const std::uint64_t rank = Utilities::MPI::this_mpi_process(comm);
+      const std::uint64_t step = std::uint64_t(1) << 26;
+      int                 ok   = 1;
+      for (unsigned int b = 0; b < blocks.sizes.size(); ++b)
+        {
+          const std::uint64_t size  = blocks.sizes[b] / n + (rank < blocks.sizes[b] % n ? 1 : 0);
+          const std::uint64_t first = blocks.sizes[b] / n * rank + std::min(rank, blocks.sizes[b] % n);
+          uLong               crc   = crc32(0L, Z_NULL, 0);
+          try
+            {
+              for (std::uint64_t o = 0; o < size; o += step)
+                {
+                  const std::string part = blocks.read(b, first + o, std::min(step, size - o));
+                  crc = crc32(crc, reinterpret_cast<const Bytef *>(part.data()), part.size());
+                }
+            }
+          catch (const RunError &)
+            {
+              ok = 0;
+            }
+          const std::uint32_t all = combined_crc32(comm, static_cast<std::uint32_t>(crc), size);
+          if (rank == 0 && all != crcs[b])
+            ok = 0;
+        }
+      return n == 1 ? ok == 1 : Utilities::MPI::min(ok, comm) == 1;
+    }
+  } // namespace
 
   Checkpoint
   read_checkpoint(const std::string &directory, const CheckpointIdentity &id,
                   const ParameterList &parameters, const MPI_Comm comm)
   {
-    const bool  root = Utilities::MPI::this_mpi_process(comm) == 0;
-    Checkpoint  c;
-    std::string error;
-    if (root)
+    const bool root     = Utilities::MPI::this_mpi_process(comm) == 0;
+    const bool parallel = Utilities::MPI::n_mpi_processes(comm) > 1;
+    const auto share    = [&](auto x) { return parallel ? Utilities::MPI::broadcast(comm, x, 0) : x; };
+    const std::vector<fs::path> files   = checkpoint_files(directory);
+    const unsigned int          n_files = share(static_cast<unsigned int>(root ? files.size() : 0));
+    Checkpoint                  c;
+    std::string                 error, skipped;
+    for (unsigned int i = 0; i < n_files; ++i)
       {
-        std::string skipped;
-        for (const auto &file : checkpoint_files(directory))
+        ParsedFile  f;
+        std::string unusable;
+        if (root)
           {
-            ParsedFile f;
             try
               {
-                f = parse_file(file);
+                f = parse_file(files[i]);
+                // a readable checkpoint of another run is an error, not a fallback
+                if (const std::string why = mismatch(f, id); !why.empty())
+                  error = "checkpoint " + files[i].string() + " does not belong to this run: " + why;
+                else
+                  require_same_parameters(f.parameters, parameters,
+                                          "from checkpoint " + files[i].string());
               }
             catch (const RunError &e)
               {
-                // a damaged newer checkpoint: the older one may be fine
-                std::cerr << "granular_dg: warning: checkpoint " << file.string()
-                          << " is unusable (" << e.what() << "); trying an older one"
-                          << std::endl;
-                skipped += (skipped.empty() ? "" : "; ") + file.filename().string() + ": " +
-                           e.what();
-                continue;
-              }
-            // a readable checkpoint of another run is an error, not a fallback
-            const std::string why = mismatch(f, id);
-            if (!why.empty())
-              {
-                error = "checkpoint " + file.string() + " does not belong to this run: " + why;
-                break;
-              }
-            try
-              {
-                require_same_parameters(f.parameters, parameters,
-                                        "from checkpoint " + file.string());
+                unusable = e.what();
               }
             catch (const InputError &e)
               {
                 error = e.what();
-                break;
               }
-            c.file    = file.string();
+          }
+        if (!(error = share(error)).empty())
+          break;
+        if ((unusable = share(unusable)).empty())
+          {
+            f.blocks.file    = share(f.blocks.file);
+            f.blocks.offsets = share(f.blocks.offsets);
+            f.blocks.sizes   = share(f.blocks.sizes);
+            if (!blocks_intact(f.blocks, f.crcs, comm))
+              unusable = "checksum mismatch (the file is corrupt)";
+          }
+        if (!unusable.empty())
+          {
+            // a damaged newer checkpoint: the older one may be fine
+            if (root)
+              {
+                std::cerr << "granular_dg: warning: checkpoint " << files[i].string()
+                          << " is unusable (" << unusable << "); trying an older one"
+                          << std::endl;
+                skipped += (skipped.empty() ? "" : "; ") + files[i].filename().string() + ": " +
+                           unusable;
+              }
+            continue;
+          }
+        if (root)
+          {
+            c.file    = files[i].string();
             c.step    = std::stoul(f.header["step"]);
             c.time    = std::stod(f.header["time"]);
             c.payload = std::move(f.payload);
-            break;
           }
-        if (error.empty() && c.file.empty())
-          error = "parameter 'Checkpoint/resume' = 'true' is not allowed: there is no usable "
-                  "checkpoint in " +
-                  checkpoint_directory(directory) +
-                  (skipped.empty() ? " (none was written" : " (" + skipped) +
-                  (has_incomplete_checkpoint(directory) ?
-                     "; an incomplete checkpoint of an interrupted write was ignored)" :
-                     ")");
+        c.blocks = std::move(f.blocks);
+        break;
       }
-    error = Utilities::MPI::broadcast(comm, error, 0);
-    if (!error.empty())
+    if (error.empty() && share(c.file).empty())
+      error = "parameter 'Checkpoint/resume' = 'true' is not allowed: there is no usable "
+              "checkpoint in " +
+              checkpoint_directory(directory) +
+              (skipped.empty() ? " (none was written" : " (" + skipped) +
+              (has_incomplete_checkpoint(directory) ?
+                 "; an incomplete checkpoint of an interrupted write was ignored)" :
+                 ")");
+    if (!(error = share(error)).empty())
       throw InputError(error);
-    c.file = Utilities::MPI::broadcast(comm, c.file, 0);
-    c.step = Utilities::MPI::broadcast(comm, c.step, 0);
-    c.time = Utilities::MPI::broadcast(comm, c.time, 0);
-    broadcast_bytes(comm, c.payload);
+    c.file = share(c.file);
+    c.step = share(c.step);
+    c.time = share(c.time);
+    if (parallel)
+      broadcast_bytes(comm, c.payload);
     return c;
   }
 

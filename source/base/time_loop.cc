@@ -157,12 +157,12 @@ namespace granular_dg
   void
   TimeLoop::resume(const Checkpoint &c)
   {
-    ByteReader    r(c.payload);
+    ByteReader    r(c.payload, &c.blocks);
     std::uint64_t timeseries_size = 0;
     std::string   state;
     loop_state(r, timeseries_size);
     r.io(state);
-    ByteReader s(state);
+    ByteReader s = r.nested(state);
     problem.load(s);
     if (root)
       timeseries.reopen(params.directory + "/timeseries.csv", timeseries_size);
@@ -181,9 +181,9 @@ namespace granular_dg
     loop_state(w, timeseries_size);
     ByteWriter s;
     problem.save(s);
-    w.io(s.bytes);
-    return write_checkpoint(params.directory, identity_of(info), params.parameters, step, t,
-                            w.bytes, MPI_COMM_WORLD);
+    w.io(std::move(s));
+    return write_checkpoint(params.directory, identity_of(info), params.parameters, step, t, w,
+                            MPI_COMM_WORLD);
   }
 
   double

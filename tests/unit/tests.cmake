@@ -17,3 +17,9 @@ granular_dg_unit_test(unit/vectorized_exp NUMDIFF -r 1e-15)
 # otherwise. RUN_SERIAL: three processes on two cores.
 granular_dg_unit_test(unit/gather_bytes MPI 3 NUMDIFF -a 0 -r 0 LABELS mpi)
 set_tests_properties(unit/gather_bytes PROPERTIES RUN_SERIAL TRUE)
+# Checkpoints written and read per rank: 3 ranks write their pieces of two
+# shared blocks through MPI-IO; each reads back its own, rank 0 each whole
+# block in rank order; a flipped byte in a block is caught by the combined
+# CRC-32 (fallback to the older checkpoint, then none). Fails itself otherwise.
+granular_dg_unit_test(unit/shared_blocks MPI 3 NUMDIFF -a 0 -r 0 LABELS mpi)
+set_tests_properties(unit/shared_blocks PROPERTIES RUN_SERIAL TRUE)

@@ -19,11 +19,14 @@
  * A checkpoint is one file OUTPUT/checkpoints/step-NNNNNNNNNN.ckpt: a text
  * header (what run it belongs to: scene, physics, dim, degree, mesh size,
  * time, step, every parameter of the run) and a binary payload with an
- * FNV-1a checksum. It is written to a temporary file and renamed, so a
- * reader never sees half of one; the newest two are kept. The payload holds
- * the time loop's state, the solution (cell by cell, keyed by CellId, so a
- * resume may use another number of MPI ranks) and the scene's running state
- * (SceneHooks::save/load), written and read with the same io() calls.
+ * FNV-1a checksum, then shared blocks with CRC-32 checksums. It is written
+ * to a temporary file and renamed, so a reader never sees half of one; the
+ * newest two are kept. The payload holds the time loop's state and the
+ * scene's running state (SceneHooks::save/load), written and read with the
+ * same io() calls, rank 0's. A shared block (the solution, cell by cell in a
+ * partition-independent order) is written by every MPI rank at its own
+ * offset, each its own cells, and read the same way, so no rank holds more
+ * than its part and a resume may use another number of ranks.
  */
 namespace granular_dg
 {
@@ -64,7 +67,39 @@ namespace granular_dg
           io(x);
     }
 
-    std::string bytes;
+    /// This rank's piece of the next shared block. Every rank calls it for
+    /// the same blocks in the same order; in the file, rank r's piece follows
+    /// rank r - 1's.
+    void
+    shared(std::string mine)
+    {
+      blocks.push_back(std::move(mine));
+    }
+
+    /// Append what `inner` wrote: its bytes as one string, its shared blocks.
+    void
+    io(ByteWriter &&inner)
+    {
+      io(inner.bytes);
+      for (auto &b : inner.blocks)
+        blocks.push_back(std::move(b));
+    }
+
+    std::string              bytes;
+    std::vector<std::string> blocks; ///< this rank's piece of each shared block
+  };
+
+  /// Where the shared blocks of a checkpoint file lie; a ByteReader reads a
+  /// rank's piece of them from the file.
+  struct SharedBlocks
+  {
+    std::string                file;
+    std::vector<std::uint64_t> offsets, sizes; ///< in the file, in bytes
+
+    /// Bytes [offset, offset + size) of block `block` (any rank, no
+    /// communication); a RunError if the file cannot give them.
+    std::string
+    read(unsigned int block, std::uint64_t offset, std::uint64_t size) const;
   };
 
   /// Reads what a ByteWriter wrote; a short or garbled payload throws a
@@ -72,9 +107,38 @@ namespace granular_dg
   class ByteReader
   {
   public:
-    explicit ByteReader(const std::string &bytes)
+    /// blocks: where the shared blocks are (none: a payload without them)
+    explicit ByteReader(const std::string &bytes, const SharedBlocks *blocks = nullptr)
       : bytes(bytes)
+      , blocks(blocks)
     {}
+
+    /// Size in bytes of the next shared block (all ranks' pieces).
+    std::uint64_t
+    shared_size() const
+    {
+      if (blocks == nullptr || next_block >= blocks->sizes.size())
+        throw RunError("checkpoint payload garbled (a shared block is missing)");
+      return blocks->sizes[next_block];
+    }
+
+    /// Bytes [offset, offset + size) of the next shared block; the reader
+    /// then moves on to the block after it.
+    std::string
+    shared(const std::uint64_t offset, const std::uint64_t size)
+    {
+      if (offset + size > shared_size())
+        throw RunError("checkpoint payload garbled (beyond the end of a shared block)");
+      return blocks->read(next_block++, offset, size);
+    }
+
+    /// A reader of the string `inner` (read from this one) that finds the
+    /// shared blocks where this one does.
+    ByteReader
+    nested(const std::string &inner) const
+    {
+      return ByteReader(inner, blocks);
+    }
 
     template <typename T>
     void
@@ -143,8 +207,10 @@ namespace granular_dg
       return p;
     }
 
-    const std::string &bytes;
-    std::size_t        position = 0;
+    const std::string  &bytes;
+    std::size_t         position = 0;
+    const SharedBlocks *blocks;
+    unsigned int        next_block = 0;
   };
 
   /// A flat list of "Section/name" = value pairs (the parameters of a run).
@@ -175,13 +241,15 @@ namespace granular_dg
     unsigned long n_cells = 0, n_dofs = 0;
   };
 
-  /// A checkpoint read back: where it stands and its payload.
+  /// A checkpoint read back: where it stands, its payload and where its
+  /// shared blocks are (read them through ByteReader(payload, &blocks)).
   struct Checkpoint
   {
     std::string   file;
     unsigned long step = 0;
     double        time = 0;
     std::string   payload;
+    SharedBlocks  blocks;
   };
 
   /// The directory holding the checkpoints of a run writing to directory.
@@ -199,20 +267,23 @@ namespace granular_dg
   bool
   has_checkpoints(const std::string &directory, bool search_subdirectories = false);
 
-  /// Write DIRECTORY/checkpoints/step-NNNNNNNNNN.ckpt (rank 0; collective
-  /// only through the barrier at the end) via a temporary file and a rename,
-  /// then remove all but the newest two. Returns the file name.
+  /// Write DIRECTORY/checkpoints/step-NNNNNNNNNN.ckpt via a temporary file
+  /// and a rename, then remove all but the newest two. Collective: rank 0
+  /// writes the header and its payload.bytes, every rank its pieces of the
+  /// shared blocks (payload.blocks, MPI-IO at offsets from an exclusive scan
+  /// of the piece sizes; CRC-32s combined on rank 0). Returns the file name.
   std::string
   write_checkpoint(const std::string &directory, const CheckpointIdentity &id,
                    const ParameterList &parameters, unsigned long step, double time,
-                   const std::string &payload, MPI_Comm comm);
+                   const ByteWriter &payload, MPI_Comm comm);
 
   /// The newest checkpoint in DIRECTORY/checkpoints that is complete, passes
   /// its checksum and belongs to this run (same scene, physics, dimension,
   /// degree, mesh and parameters, but those of may_change_on_resume());
   /// unusable newer ones are skipped with a warning on stderr. An InputError
   /// when there is none (naming what differs, or why each one is unusable).
-  /// Collective: rank 0 reads, the payload is broadcast.
+  /// Collective: rank 0 reads the header and payload, which are broadcast;
+  /// every rank checks a share of the shared blocks' checksums.
   Checkpoint
   read_checkpoint(const std::string &directory, const CheckpointIdentity &id,
                   const ParameterList &parameters, MPI_Comm comm);
@@ -232,6 +303,16 @@ namespace granular_dg
   /// FNV-1a, 64 bit, of a byte string (the payload checksum).
   std::uint64_t
   fnv1a(const std::string &bytes);
+
+  /// CRC-32 (zlib) of the bytes all ranks hold in rank order, given each
+  /// rank's: one gather to rank 0, which combines them (crc32_combine) and
+  /// returns the checksum (other ranks: 0). `size` is this rank's byte count.
+  std::uint32_t
+  combined_crc32(MPI_Comm comm, std::uint32_t crc, std::uint64_t size);
+
+  /// CRC-32 of a byte range.
+  std::uint32_t
+  crc32_of(const char *data, std::uint64_t size);
 
   /// While it lives, SIGINT and SIGTERM set a flag that the time loop polls
   /// after every step (CheckpointSchedule): the run writes a checkpoint and

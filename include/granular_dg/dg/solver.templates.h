@@ -427,10 +427,10 @@ namespace granular_dg::dg
   Solver<dim, Physics>::save(ByteWriter &w)
   {
     w.io(troubled);
-    w.io(save_cell_values(dof_handler, solution));
+    save_cell_values(dof_handler, solution, w);
     ByteWriter h;
     hooks.save(h);
-    w.io(h.bytes);
+    w.io(std::move(h));
     if (active)
       {
         active->save(w);
@@ -442,12 +442,11 @@ namespace granular_dg::dg
   void
   Solver<dim, Physics>::load(ByteReader &r)
   {
-    std::string cells, hook_state;
+    std::string hook_state;
     r.io(troubled);
-    r.io(cells);
+    load_cell_values(dof_handler, r, solution);
     r.io(hook_state);
-    load_cell_values(dof_handler, cells, solution);
-    ByteReader h(hook_state);
+    ByteReader h = r.nested(hook_state);
     hooks.load(h);
     if (active)
       {
