@@ -283,16 +283,6 @@ namespace granular_dg
   }
 
   std::uint32_t
-  crc32_of(const char *data, std::uint64_t size)
-  {
-    uLong crc = crc32(0L, Z_NULL, 0);
-    for (std::uint64_t o = 0; o < size; o += 1u << 30)
-      crc = crc32(crc, reinterpret_cast<const Bytef *>(data + o),
-                  static_cast<uInt>(std::min<std::uint64_t>(size - o, 1u << 30)));
-    return static_cast<std::uint32_t>(crc);
-  }
-
-  std::uint32_t
   combined_crc32(const MPI_Comm comm, const std::uint32_t crc, const std::uint64_t size)
   {
     const unsigned int n = Utilities::MPI::n_mpi_processes(comm);
@@ -484,13 +474,35 @@ namespace granular_dg
       return static_cast<std::uint64_t>(out.tellp());
     }
 
+    /// A piece through `write(data, n)` in chunks of 4 MB (its bytes never
+    /// exist whole: the chunk is all a checkpoint adds to the run's memory);
+    /// returns the piece's CRC-32, 0 if a write failed.
+    template <typename Write>
+    std::uint32_t
+    write_piece(const SharedPiece &piece, const Write &write)
+    {
+      const std::uint64_t chunk = std::uint64_t(1) << 22;
+      std::string         buffer(std::min(chunk, piece.size), '\0');
+      uLong               crc = crc32(0L, Z_NULL, 0);
+      for (std::uint64_t o = 0; o < piece.size; o += chunk)
+        {
+          const std::uint64_t n = std::min(chunk, piece.size - o);
+          piece.fill(o, n, buffer.data());
+          crc = crc32(crc, reinterpret_cast<const Bytef *>(buffer.data()), n);
+          if (!write(buffer.data(), n))
+            return 0;
+        }
+      return static_cast<std::uint32_t>(crc);
+    }
+
     /// Every rank: its pieces of the shared blocks into the file at
     /// `start` + the block's offset + the pieces of the ranks before it
-    /// (MPI-IO, independent writes of at most 1 GB); false on an error.
+    /// (MPI-IO, independent writes), and their CRC-32s; false on an error.
     bool
     write_pieces(const fs::path &tmp, const std::uint64_t start, const ByteWriter &payload,
                  const std::vector<std::uint64_t> &block_starts,
-                 const std::vector<std::uint64_t> &before, const MPI_Comm comm)
+                 const std::vector<std::uint64_t> &before, std::vector<std::uint32_t> &crcs,
+                 const MPI_Comm comm)
     {
       MPI_File file;
       if (MPI_File_open(comm, tmp.c_str(), MPI_MODE_WRONLY, MPI_INFO_NULL, &file) != MPI_SUCCESS)
@@ -498,14 +510,13 @@ namespace granular_dg
       bool ok = true;
       for (unsigned int b = 0; b < payload.blocks.size(); ++b)
         {
-          const std::string &mine = payload.blocks[b];
-          for (std::size_t o = 0; o < mine.size() && ok; o += std::size_t(1) << 30)
-            {
-              const int count = static_cast<int>(std::min(mine.size() - o, std::size_t(1) << 30));
-              const auto at   = static_cast<MPI_Offset>(start + block_starts[b] + before[b] + o);
-              ok = MPI_File_write_at(file, at, mine.data() + o, count, MPI_CHAR,
-                                     MPI_STATUS_IGNORE) == MPI_SUCCESS;
-            }
+          MPI_Offset at = static_cast<MPI_Offset>(start + block_starts[b] + before[b]);
+          crcs[b] = write_piece(payload.blocks[b], [&](const char *data, const std::uint64_t n) {
+            ok = ok && MPI_File_write_at(file, at, data, static_cast<int>(n), MPI_CHAR,
+                                         MPI_STATUS_IGNORE) == MPI_SUCCESS;
+            at += static_cast<MPI_Offset>(n);
+            return ok;
+          });
         }
       return MPI_File_close(&file) == MPI_SUCCESS && ok;
     }
@@ -577,7 +588,7 @@ namespace granular_dg
     // where each block starts and where this rank's pieces go in them
     std::vector<std::uint64_t> mine(n_blocks), before(n_blocks, 0), starts(n_blocks, 0);
     for (unsigned int b = 0; b < n_blocks; ++b)
-      mine[b] = payload.blocks[b].size();
+      mine[b] = payload.blocks[b].size;
     std::vector<std::uint64_t> sizes = mine;
     if (n_ranks > 1 && n_blocks > 0)
       {
@@ -589,8 +600,9 @@ namespace granular_dg
     for (unsigned int b = 1; b < n_blocks; ++b)
       starts[b] = starts[b - 1] + sizes[b - 1];
 
-    std::string   error;
-    std::uint64_t start = 0;
+    std::string                error;
+    std::uint64_t              start = 0;
+    std::vector<std::uint32_t> crcs(n_blocks); // of this rank's pieces
     if (root)
       try
         {
@@ -600,8 +612,10 @@ namespace granular_dg
           if (n_ranks == 1)
             {
               std::ofstream out(tmp, std::ios::binary | std::ios::app);
-              for (const auto &piece : payload.blocks)
-                out.write(piece.data(), piece.size());
+              for (unsigned int b = 0; b < n_blocks; ++b)
+                crcs[b] = write_piece(payload.blocks[b], [&](const char *data, std::uint64_t n) {
+                  return static_cast<bool>(out.write(data, n));
+                });
               out.flush();
               if (!out)
                 throw RunError("cannot write checkpoint " + tmp.string() +
@@ -617,15 +631,14 @@ namespace granular_dg
         if (!(error = agree_on_error(comm, error)).empty())
           throw RunError(error);
         start = Utilities::MPI::broadcast(comm, start, 0);
-        if (!write_pieces(tmp, start, payload, starts, before, comm))
+        if (!write_pieces(tmp, start, payload, starts, before, crcs, comm))
           error = "cannot write checkpoint " + tmp.string() + " through MPI-IO";
       }
     if (!(error = agree_on_error(comm, error)).empty())
       throw RunError(error);
 
-    std::vector<std::uint32_t> crcs(n_blocks);
     for (unsigned int b = 0; b < n_blocks; ++b)
-      crcs[b] = combined_crc32(comm, crc32_of(payload.blocks[b].data(), mine[b]), mine[b]);
+      crcs[b] = combined_crc32(comm, crcs[b], mine[b]);
     if (root)
       try
         {

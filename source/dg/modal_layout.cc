@@ -107,8 +107,8 @@ namespace granular_dg::dg
   {
     IndexSet relevant;
     DoFTools::extract_locally_relevant_dofs(dof_handler, relevant);
-    const auto partitioner = std::make_shared<Utilities::MPI::Partitioner>(
-      dof_handler.locally_owned_dofs(), relevant, comm);
+    partitioner = std::make_shared<Utilities::MPI::Partitioner>(dof_handler.locally_owned_dofs(),
+                                                                relevant, comm);
     for (auto &i : dof_index)
       {
         AssertThrow(partitioner->in_local_range(i) || partitioner->is_ghost_entry(i),
@@ -116,8 +116,6 @@ namespace granular_dg::dg
         i = partitioner->global_to_local(i);
       }
     has_ghosts = Utilities::MPI::max(partitioner->n_ghost_indices(), comm) > 0;
-    if (has_ghosts)
-      ghosted.reinit(partitioner);
   }
 
   template <int dim>
@@ -126,6 +124,8 @@ namespace granular_dg::dg
   {
     if (!has_ghosts)
       return u;
+    if (ghosted.size() != partitioner->size())
+      ghosted.reinit(partitioner);
     ghosted.copy_locally_owned_data_from(u);
     ghosted.update_ghost_values();
     return ghosted;

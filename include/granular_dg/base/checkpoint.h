@@ -8,6 +8,8 @@
 #include <csignal>
 #include <cstdint>
 #include <cstring>
+#include <functional>
+#include <memory>
 #include <string>
 #include <type_traits>
 #include <utility>
@@ -30,6 +32,15 @@
  */
 namespace granular_dg
 {
+  /// This rank's piece of a shared block of a checkpoint: its size, and
+  /// what writes bytes [offset, offset + n) of it to out (called while the
+  /// checkpoint is written, in chunks, so the piece need not exist whole).
+  struct SharedPiece
+  {
+    std::uint64_t                                                     size = 0;
+    std::function<void(std::uint64_t offset, std::uint64_t n, char *out)> fill;
+  };
+
   /// The payload of a checkpoint, written with io(x) for each member; a
   /// ByteReader reads it back with the same sequence of io() calls.
   class ByteWriter
@@ -71,9 +82,18 @@ namespace granular_dg
     /// the same blocks in the same order; in the file, rank r's piece follows
     /// rank r - 1's.
     void
-    shared(std::string mine)
+    shared(SharedPiece mine)
     {
       blocks.push_back(std::move(mine));
+    }
+
+    /// shared() of bytes at hand
+    void
+    shared(std::string mine)
+    {
+      auto bytes = std::make_shared<const std::string>(std::move(mine));
+      shared({bytes->size(), [bytes](const std::uint64_t offset, const std::uint64_t n,
+                                     char *out) { std::memcpy(out, bytes->data() + offset, n); }});
     }
 
     /// Append what `inner` wrote: its bytes as one string, its shared blocks.
@@ -86,7 +106,7 @@ namespace granular_dg
     }
 
     std::string              bytes;
-    std::vector<std::string> blocks; ///< this rank's piece of each shared block
+    std::vector<SharedPiece> blocks; ///< this rank's piece of each shared block
   };
 
   /// Where the shared blocks of a checkpoint file lie; a ByteReader reads a
@@ -309,10 +329,6 @@ namespace granular_dg
   /// returns the checksum (other ranks: 0). `size` is this rank's byte count.
   std::uint32_t
   combined_crc32(MPI_Comm comm, std::uint32_t crc, std::uint64_t size);
-
-  /// CRC-32 of a byte range.
-  std::uint32_t
-  crc32_of(const char *data, std::uint64_t size);
 
   /// While it lives, SIGINT and SIGTERM set a flag that the time loop polls
   /// after every step (CheckpointSchedule): the run writes a checkpoint and

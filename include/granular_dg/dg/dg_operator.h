@@ -138,8 +138,9 @@ namespace granular_dg::dg
     engine_memory() const override
     {
       const auto n = [](const auto &v) { return v.capacity() * sizeof(v[0]); };
-      return data.memory_consumption() + inverse_mass_diagonal.memory_consumption() +
-             n(cell_coefficients) + n(face_coefficients_m) + n(face_coefficients_p);
+      return data.memory_consumption() + n(inverse_cell_volume) +
+             inverse_mass_diagonal.memory_consumption() + n(cell_coefficients) +
+             n(face_coefficients_m) + n(face_coefficients_p);
     }
 
     void
@@ -199,10 +200,20 @@ namespace granular_dg::dg
     Coefficients<VA>
     pack_coefficients(const unsigned int n_lanes, const CellOfLane &cell_of_lane) const;
 
+    /// inverse_mass_diagonal -> inverse_cell_volume where possible
+    void
+    compress_inverse_mass(unsigned int dofs_per_cell);
+
     Physics                 phys;
     BoundaryMap<dim>        boundary;
     MatrixFree<dim, Number, VA> data;
+    /// The inverse mass matrix: 1/|K| per owned cell (its DoFs are the
+    /// vector's entries [c n, (c + 1) n), n = dofs_per_cell); the diagonal
+    /// as a vector only where that does not hold (then inverse_cell_volume
+    /// is empty).
+    std::vector<double>     inverse_cell_volume;
     VectorType              inverse_mass_diagonal;
+    unsigned int            dofs_per_cell = 0;
     unsigned int            degree = 0;
     /// per cell batch; per face batch, interior (m) and exterior (p) side
     std::vector<Coefficients<VA>> cell_coefficients, face_coefficients_m,

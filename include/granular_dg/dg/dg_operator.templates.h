@@ -143,6 +143,32 @@ namespace granular_dg::dg
           phi.begin_dof_values()[i] = VA(1.) / volume;
         phi.set_dof_values(inverse_mass_diagonal);
       }
+    compress_inverse_mass(phi.dofs_per_cell);
+  }
+
+  template <int dim, typename Physics, int width>
+  void
+  DGOperator<dim, Physics, width>::compress_inverse_mass(const unsigned int n)
+  {
+    // one value per cell if the diagonal is constant on consecutive runs of
+    // a cell's DoFs (DG numbering: always); the same products bit for bit
+    dofs_per_cell                = n;
+    const unsigned int n_entries = inverse_mass_diagonal.locally_owned_size();
+    const double      *d         = inverse_mass_diagonal.begin();
+    inverse_cell_volume.clear();
+    bool uniform = n > 0 && n_entries % n == 0;
+    for (unsigned int c = 0; uniform && c < n_entries / n; ++c)
+      {
+        for (unsigned int i = 1; i < n; ++i)
+          uniform = uniform && d[c * n + i] == d[c * n];
+        inverse_cell_volume.push_back(d[c * n]);
+      }
+    if (!uniform)
+      {
+        inverse_cell_volume = std::vector<double>();
+        return;
+      }
+    inverse_mass_diagonal.reinit(0);
   }
 
   template <int dim, typename Physics, int width>
@@ -420,7 +446,19 @@ namespace granular_dg::dg
   {
     time = t;
     dispatch([&](const auto &kernels) { kernels.apply(src, dst); });
-    dst.scale(inverse_mass_diagonal);
+    if (inverse_cell_volume.empty())
+      dst.scale(inverse_mass_diagonal);
+    else
+      {
+        const unsigned int n = dofs_per_cell;
+        double            *x = dst.begin();
+        for (std::size_t c = 0; c < inverse_cell_volume.size(); ++c)
+          {
+            const double v = inverse_cell_volume[c];
+            for (unsigned int i = 0; i < n; ++i)
+              x[c * n + i] *= v;
+          }
+      }
   }
 
   template <int dim, typename Physics, int width>

@@ -6,6 +6,7 @@
 #include <deal.II/lac/la_parallel_vector.h>
 
 #include <array>
+#include <memory>
 #include <type_traits>
 #include <vector>
 
@@ -76,9 +77,19 @@ namespace granular_dg::dg
     localize(const DoFHandler<dim> &dof_handler, MPI_Comm comm);
 
     /// u with the ghost neighbours' entries in the localized numbering: u
-    /// itself in serial, otherwise a copy with exchanged ghost values.
+    /// itself in serial, otherwise a copy with exchanged ghost values (made
+    /// on first use and kept until release_ghosts()).
     const LinearAlgebra::distributed::Vector<double> &
     with_ghosts(const LinearAlgebra::distributed::Vector<double> &u) const;
+
+    /// Free the copy of with_ghosts() (a full vector): for users that need
+    /// it rarely (diagnostics at output times), so that a run whose limiter
+    /// does not limit holds no such copy between them.
+    void
+    release_ghosts() const
+    {
+      ghosted.reinit(0);
+    }
 
     unsigned int n_owned() const { return n_owned_cells; }
     unsigned int n_cells() const { return cells.size(); }
@@ -169,6 +180,7 @@ namespace granular_dg::dg
     std::vector<double>                                         extents;
     std::vector<double>                                         at_1, at_0;
     bool                                                        has_ghosts = false;
+    std::shared_ptr<const Utilities::MPI::Partitioner>          partitioner;
     mutable LinearAlgebra::distributed::Vector<double>          ghosted;
   };
 } // namespace granular_dg::dg

@@ -68,16 +68,23 @@ namespace granular_dg::dg
 
     /// One Runge-Kutta stage (StageUpdate; dst may be src or s.old):
     /// bit for bit apply() followed by deal.II's vector operations. This
-    /// default does exactly that; an engine may fuse it into its cell loop.
+    /// default does exactly that, with the rate in dst itself when dst is
+    /// neither src nor s.old, else in s.scratch or a vector of its own; an
+    /// engine may fuse it into its cell loop.
     virtual void
     apply_stage(const double time, const VectorType &src, VectorType &dst,
                 const StageUpdate<> &s) const
     {
-      if (rate.size() != src.size())
-        rate.reinit(src);
-      apply(time, src, rate);
+      VectorType *k_vector = &dst;
+      if (&dst == &src || &dst == s.old)
+        {
+          if (s.scratch == nullptr && rate.size() != src.size())
+            rate.reinit(src);
+          k_vector = s.scratch ? s.scratch : &rate;
+        }
+      apply(time, src, *k_vector);
       const unsigned int n = src.locally_owned_size();
-      const double      *u = src.begin(), *k = rate.begin();
+      const double      *u = src.begin(), *k = k_vector->begin();
       double            *out = dst.begin();
       if (s.old)
         for (unsigned int i = 0; i < n; ++i)

@@ -12,6 +12,7 @@
 #include <array>
 #include <cstdint>
 #include <cstring>
+#include <memory>
 #include <string>
 #include <utility>
 #include <vector>
@@ -94,7 +95,7 @@ namespace granular_dg::dg
         {
           const auto first = forest_key<dim>(cells.front()->id());
           const auto last  = forest_key<dim>(cells.back()->id());
-          mine = {1, first.first, first.second, last.first, last.second};
+          mine = {{1, first.first, first.second, last.first, last.second}};
         }
       std::vector<std::uint64_t> all(5 * n);
       MPI_Allgather(mine.data(), 5, MPI_UINT64_T, all.data(), 5, MPI_UINT64_T, comm);
@@ -125,29 +126,36 @@ namespace granular_dg::dg
     const MPI_Comm     comm   = u.get_mpi_communicator();
     const bool         writes = internal::is_distributed(dof_handler.get_triangulation()) ||
                         Utilities::MPI::this_mpi_process(comm) == 0;
-    const auto cells = internal::owned_cells_in_forest_order(dof_handler);
+    auto cells = std::make_shared<const std::vector<typename DoFHandler<dim>::active_cell_iterator>>(
+      internal::owned_cells_in_forest_order(dof_handler));
     if (internal::is_distributed(dof_handler.get_triangulation()))
-      internal::require_rank_order<dim>(cells, comm);
-    std::string mine;
-    if (writes)
-      {
-        mine.reserve(cells.size() * (sizeof(Key) + n * sizeof(double)));
-        std::vector<types::global_dof_index> dofs(n);
-        for (const auto &cell : cells)
-          {
-            const Key key = cell->id().template to_binary<dim>();
-            mine.append(reinterpret_cast<const char *>(&key), sizeof(Key));
-            cell->get_dof_indices(dofs);
-            for (const auto i : dofs)
-              {
-                const double v = u(i);
-                mine.append(reinterpret_cast<const char *>(&v), sizeof(double));
-              }
-          }
-      }
+      internal::require_rank_order<dim>(*cells, comm);
     w.io(static_cast<std::uint64_t>(dof_handler.get_triangulation().n_global_active_cells()));
     w.io(n);
-    w.shared(std::move(mine));
+    // the records are made as the checkpoint writes them (u must not change
+    // until then): bytes [offset, offset + size) from the records they cross
+    const std::size_t record = sizeof(Key) + n * sizeof(double);
+    const auto        fill = [cells, &u, n, record](const std::uint64_t offset,
+                                                   const std::uint64_t size, char *out) {
+      std::vector<char>                    bytes(record);
+      std::vector<types::global_dof_index> dofs(n);
+      for (std::uint64_t r = offset / record; r * record < offset + size; ++r)
+        {
+          const auto &cell = (*cells)[r];
+          const Key   key  = cell->id().template to_binary<dim>();
+          std::memcpy(bytes.data(), &key, sizeof(Key));
+          cell->get_dof_indices(dofs);
+          for (unsigned int i = 0; i < n; ++i)
+            {
+              const double v = u(dofs[i]);
+              std::memcpy(bytes.data() + sizeof(Key) + i * sizeof(double), &v, sizeof(double));
+            }
+          const std::uint64_t first = std::max(offset, r * record);
+          const std::uint64_t end   = std::min(offset + size, (r + 1) * record);
+          std::memcpy(out + (first - offset), bytes.data() + (first - r * record), end - first);
+        }
+    };
+    w.shared(SharedPiece{writes ? cells->size() * record : 0, fill});
   }
 
   /// Set the owned cells of u from what save_cell_values() wrote, reading

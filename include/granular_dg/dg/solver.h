@@ -81,6 +81,13 @@ namespace granular_dg::dg
       return solution;
     }
 
+    /// Whether a step swaps solution and last_good instead of copying.
+    bool
+    swaps_last_good() const
+    {
+      return !low_storage && !active;
+    }
+
   private:
     void
     post_stage(VectorType &u, double stage_time, double weight);
@@ -135,6 +142,11 @@ namespace granular_dg::dg
     /// the last CFL step time_step() gave
     double                           cfl_step = 0;
     VectorType                       solution, last_good, benchmark_start;
+    /// SSP-RK3 without skipped cells writes a step's new state to last_good
+    /// and swaps (SSPRK3::step's spare): storing the last good state is then
+    /// free, and this says whether the swap of the last step has happened
+    /// since (restore swaps back)
+    bool                             last_good_swapped = false;
     unsigned int                     troubled = 0;
     StepPhases                      *phases   = nullptr;
   };

@@ -314,6 +314,12 @@ namespace granular_dg::dg
       active->begin_step(dt, dt == cfl_step, solution);
     if (low_storage)
       low_storage->step(timed, solution, t, dt, stage);
+    else if (swaps_last_good())
+      {
+        integrator.step(timed, solution, t, dt, stage, &last_good);
+        solution.swap(last_good);
+        last_good_swapped = true;
+      }
     else
       integrator.step(timed, solution, t, dt, stage);
     if (active)
@@ -338,17 +344,27 @@ namespace granular_dg::dg
   void
   Solver<dim, Physics>::store(const Slot slot)
   {
-    if (slot == Slot::last_good)
-      last_good = solution;
-    else
+    if (slot == Slot::benchmark_start)
       benchmark_start = solution;
+    else if (swaps_last_good())
+      last_good_swapped = false; // the solution is the last good state
+    else
+      last_good = solution;
   }
 
   template <int dim, typename Physics>
   void
   Solver<dim, Physics>::restore(const Slot slot)
   {
-    solution = slot == Slot::last_good ? last_good : benchmark_start;
+    if (slot == Slot::benchmark_start)
+      solution = benchmark_start;
+    else if (!swaps_last_good())
+      solution = last_good;
+    else if (last_good_swapped)
+      {
+        solution.swap(last_good);
+        last_good_swapped = false;
+      }
     if (active)
       active->reset();
   }

@@ -24,6 +24,9 @@ namespace granular_dg::dg
   {
     const Vector *old   = nullptr;
     double        alpha = 1., beta = 0., gamma = 0.;
+    /// a vector the stage may overwrite (not src, dst or old) to hold the
+    /// rate when dst is src or old; null: the operator's own
+    Vector *scratch = nullptr;
   };
 
   /// a * b rounded on its own: never contracted with a following sum into
@@ -92,13 +95,18 @@ namespace granular_dg::dg
     using PostStageHook = std::function<void(Vector &u, double stage_time, double weight)>;
 
     /// One step: op.apply_stage(t, src, dst, StageUpdate) does a stage.
+    /// With a spare vector (of u's layout, its values free to overwrite) the
+    /// new state goes to *spare and u keeps the old one (the caller swaps):
+    /// the spare holds the rate of the in-place second stage and the last
+    /// stage needs none, so the operator keeps no rate vector of its own.
     template <typename Operator>
     void
     step(const Operator      &op,
          Vector              &u,
          const double         t,
          const double         dt,
-         const PostStageHook &post_stage)
+         const PostStageHook &post_stage,
+         Vector              *spare = nullptr)
     {
       if (!initialized)
         {
@@ -108,11 +116,13 @@ namespace granular_dg::dg
       op.apply_stage(t, u, u1, StageUpdate<Vector>{nullptr, 1., 0., dt});
       post_stage(u1, t + dt, dt);
       // u1 = 1/4 u1 + 3/4 u + dt/4 L(u1), in place
-      op.apply_stage(t + dt, u1, u1, StageUpdate<Vector>{&u, 0.25, 0.75, 0.25 * dt});
+      op.apply_stage(t + dt, u1, u1, StageUpdate<Vector>{&u, 0.25, 0.75, 0.25 * dt, spare});
       post_stage(u1, t + 0.5 * dt, 0.25 * dt);
-      // u = 2/3 u1 + 1/3 u + 2/3 dt L(u1)
-      op.apply_stage(t + 0.5 * dt, u1, u, StageUpdate<Vector>{&u, 2. / 3., 1. / 3., 2. / 3. * dt});
-      post_stage(u, t + dt, 2. / 3. * dt);
+      // u_new = 2/3 u1 + 1/3 u + 2/3 dt L(u1)
+      Vector &out = spare ? *spare : u;
+      op.apply_stage(t + 0.5 * dt, u1, out,
+                     StageUpdate<Vector>{&u, 2. / 3., 1. / 3., 2. / 3. * dt});
+      post_stage(out, t + dt, 2. / 3. * dt);
     }
 
     static constexpr unsigned int n_stages = 3;

@@ -185,6 +185,7 @@ namespace granular_dg::elasticity
     jump_sum            = Utilities::MPI::sum(jump_sum, comm);
     count               = Utilities::MPI::sum(count, comm);
     r.stress_jump_mean  = count > 0 ? jump_sum / count : 0.;
+    layout->release_ghosts(); // (U is invalid from here)
     return r;
   }
 

@@ -198,26 +198,35 @@ namespace granular_dg::elasticity
                 ") on a mesh face (cell size " + format_number(h) + ")");
     }
 
+    /// The coarse mesh whose `refinements` global refinements give `cells`
+    /// cells per direction. In 2D every MPI rank holds the whole coarse mesh
+    /// of a p4est triangulation (and p4est a tree per coarse cell), so it is
+    /// the coarsest one: cells / 2^r with r the powers of two that both
+    /// counts share (2000 x 200 cells: 250 x 25 coarse cells refined 3
+    /// times). 1D: the cells themselves.
     template <int dim>
     std::shared_ptr<Triangulation<dim>>
-    make_mesh(const LayeredParameters &p, const std::array<unsigned int, 2> &cells)
+    make_coarse_mesh(const LayeredParameters &p, const std::array<unsigned int, 2> &cells,
+                     unsigned int &refinements)
     {
-      std::shared_ptr<Triangulation<dim>> tria;
+      refinements = 0;
       if constexpr (dim == 1)
         {
-          tria = std::make_shared<Triangulation<1>>();
+          auto tria = std::make_shared<Triangulation<1>>();
           GridGenerator::subdivided_hyper_rectangle(*tria, std::vector<unsigned int>{cells[0]},
                                                     Point<1>(p.lo[0]), Point<1>(p.hi[0]), true);
+          return tria;
         }
       else
         {
-          tria = std::make_shared<parallel::distributed::Triangulation<2>>(MPI_COMM_WORLD);
+          while (((cells[0] | cells[1]) >> refinements & 1u) == 0)
+            ++refinements;
+          auto tria = std::make_shared<parallel::distributed::Triangulation<2>>(MPI_COMM_WORLD);
           GridGenerator::subdivided_hyper_rectangle(
-            *tria, std::vector<unsigned int>{cells[0], cells[1]}, p.lo, p.hi, true);
+            *tria, std::vector<unsigned int>{cells[0] >> refinements, cells[1] >> refinements},
+            p.lo, p.hi, true);
+          return tria;
         }
-      for (const auto &cell : tria->active_cell_iterators())
-        cell->set_material_id(p.layers.id(cell->center()));
-      return tria;
     }
 
     /// The boundary condition of side b (not periodic).
@@ -313,8 +322,13 @@ namespace granular_dg::elasticity
 
       dg::SceneData<dim, System<dim>> scene{"layered_strip",
                                             System<dim>(p.law, p.layers.table(), p.flux)};
-      scene.triangulation = make_mesh<dim>(p, cells);
+      unsigned int refinements = 0;
+      scene.triangulation      = make_coarse_mesh<dim>(p, cells, refinements);
+      // (p4est takes periodicity on the coarse mesh, before refinement)
       set_boundaries<dim>(p, periodic_x, scene);
+      scene.triangulation->refine_global(refinements);
+      for (const auto &cell : scene.triangulation->active_cell_iterators())
+        cell->set_material_id(p.layers.id(cell->center()));
       scene.initial = primitive_function<dim>(p.initial, scene.physics, p.layers, false);
       require_admissible_initial_state(p.initial, scene);
       scene.exact = exact_solution<dim>(p, scene.physics);
