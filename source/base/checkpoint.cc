@@ -697,7 +697,7 @@ namespace granular_dg
     const bool root     = Utilities::MPI::this_mpi_process(comm) == 0;
     const bool parallel = Utilities::MPI::n_mpi_processes(comm) > 1;
     const auto share    = [&](auto x) { return parallel ? Utilities::MPI::broadcast(comm, x, 0) : x; };
-    const std::vector<fs::path> files   = checkpoint_files(directory);
+    const std::vector<fs::path> files   = root ? checkpoint_files(directory) : std::vector<fs::path>();
     const unsigned int          n_files = share(static_cast<unsigned int>(root ? files.size() : 0));
     Checkpoint                  c;
     std::string                 error, skipped;

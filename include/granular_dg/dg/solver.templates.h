@@ -357,7 +357,10 @@ namespace granular_dg::dg
   Solver<dim, Physics>::restore(const Slot slot)
   {
     if (slot == Slot::benchmark_start)
-      solution = benchmark_start;
+      {
+        solution          = benchmark_start;
+        last_good_swapped = false; // (a state restored is a good one)
+      }
     else if (!swaps_last_good())
       solution = last_good;
     else if (last_good_swapped)
