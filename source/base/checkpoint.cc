@@ -441,6 +441,14 @@ namespace granular_dg
 
   namespace
   {
+    /// A RunError if a write to the checkpoint's temporary file failed.
+    void
+    require_written(const std::ofstream &out, const fs::path &tmp)
+    {
+      if (!out)
+        throw RunError("cannot write checkpoint " + tmp.string() + " (disk full or not writable)");
+    }
+
     /// Rank 0: the header and the payload into a new file; returns where the
     /// shared blocks begin.
     std::uint64_t
@@ -469,8 +477,7 @@ namespace granular_dg
       out << '\n' << "payload " << payload.bytes.size() << ' ' << hex(fnv1a(payload.bytes)) << '\n';
       out.write(payload.bytes.data(), payload.bytes.size());
       out.flush();
-      if (!out)
-        throw RunError("cannot write checkpoint " + tmp.string() + " (disk full or not writable)");
+      require_written(out, tmp);
       return static_cast<std::uint64_t>(out.tellp());
     }
 
@@ -537,9 +544,7 @@ namespace granular_dg
           }
         out << '\n';
         out.flush();
-        if (!out)
-          throw RunError("cannot write checkpoint " + tmp.string() +
-                         " (disk full or not writable)");
+        require_written(out, tmp);
       }
       std::error_code ec;
       fs::rename(tmp, file);
@@ -609,31 +614,17 @@ namespace granular_dg
           std::error_code ec;
           fs::create_directories(dir, ec);
           start = write_head(tmp, id, parameters, step, time, payload, sizes, n_ranks);
-          if (n_ranks == 1)
-            {
-              std::ofstream out(tmp, std::ios::binary | std::ios::app);
-              for (unsigned int b = 0; b < n_blocks; ++b)
-                crcs[b] = write_piece(payload.blocks[b], [&](const char *data, std::uint64_t n) {
-                  return static_cast<bool>(out.write(data, n));
-                });
-              out.flush();
-              if (!out)
-                throw RunError("cannot write checkpoint " + tmp.string() +
-                               " (disk full or not writable)");
-            }
         }
       catch (const RunError &e)
         {
           error = e.what();
         }
+    if (!(error = agree_on_error(comm, error)).empty())
+      throw RunError(error);
     if (n_ranks > 1)
-      {
-        if (!(error = agree_on_error(comm, error)).empty())
-          throw RunError(error);
-        start = Utilities::MPI::broadcast(comm, start, 0);
-        if (!write_pieces(tmp, start, payload, starts, before, crcs, comm))
-          error = "cannot write checkpoint " + tmp.string() + " through MPI-IO";
-      }
+      start = Utilities::MPI::broadcast(comm, start, 0);
+    if (!write_pieces(tmp, start, payload, starts, before, crcs, comm))
+      error = "cannot write checkpoint " + tmp.string() + " through MPI-IO";
     if (!(error = agree_on_error(comm, error)).empty())
       throw RunError(error);
 

@@ -124,11 +124,11 @@ namespace granular_dg::dg
     using Key                 = CellId::binary_type;
     const unsigned int n      = dof_handler.get_fe().n_dofs_per_cell();
     const MPI_Comm     comm   = u.get_mpi_communicator();
-    const bool         writes = internal::is_distributed(dof_handler.get_triangulation()) ||
-                        Utilities::MPI::this_mpi_process(comm) == 0;
+    const bool distributed    = internal::is_distributed(dof_handler.get_triangulation());
+    const bool writes         = distributed || Utilities::MPI::this_mpi_process(comm) == 0;
     auto cells = std::make_shared<const std::vector<typename DoFHandler<dim>::active_cell_iterator>>(
       internal::owned_cells_in_forest_order(dof_handler));
-    if (internal::is_distributed(dof_handler.get_triangulation()))
+    if (distributed)
       internal::require_rank_order<dim>(*cells, comm);
     w.io(static_cast<std::uint64_t>(dof_handler.get_triangulation().n_global_active_cells()));
     w.io(n);
