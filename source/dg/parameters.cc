@@ -165,6 +165,15 @@ namespace granular_dg::dg
                       "which a cell is flagged, in (0, 1); kxrcf: the bound on the "
                       "normalised face jumps; 0: automatic (0.5 10^(-1.8 (p+1)^(1/4)) for "
                       "degree p, 1 for kxrcf).");
+    prm.declare_entry("subcell blending", "false", Patterns::Bool(),
+                      "Blend the DG update of every stage with a first-order finite-volume "
+                      "update on the p + 1 subcells of each cell, by a factor alpha from "
+                      "the modal energy of the indicator variable (Hennemann et al. 2021; "
+                      "0 in smooth cells); conservative. Independent of Limiter/scheme (both "
+                      "may act). Line engine (serial 1D runs); doc/engine.md.");
+    prm.declare_entry("blending maximum", "0.5", Patterns::Double(0, 1),
+                      "The largest blending factor alpha_max, in (0, 1] (1: pure "
+                      "finite volumes in the cells the indicator flags most).");
     prm.leave_subsection();
 
     prm.enter_subsection("Output");
@@ -219,6 +228,12 @@ namespace granular_dg::dg
             "Limiter/indicator threshold", indicator_threshold,
             "must be in [0, 1) with indicator = modal_energy (a share of the energy; "
             "0 = automatic)");
+    if (prm.get_bool("subcell blending"))
+      {
+        blending_max = prm.get_double("blending maximum");
+        require(blending_max > 0, "Limiter/blending maximum", blending_max,
+                "must be in (0, 1] with subcell blending = true");
+      }
     prm.leave_subsection();
     const EnumNames<LimiterType> limiter_names(
       {{LimiterType::none, "none"},

@@ -23,3 +23,9 @@ set_tests_properties(unit/gather_bytes PROPERTIES RUN_SERIAL TRUE)
 # CRC-32 (fallback to the older checkpoint, then none). Fails itself otherwise.
 granular_dg_unit_test(unit/shared_blocks MPI 3 NUMDIFF -a 0 -r 0 LABELS mpi)
 set_tests_properties(unit/shared_blocks PROPERTIES RUN_SERIAL TRUE)
+# Subcell blending in the line engine (issue 21): the blending factors (the
+# jump cell alpha_max, its neighbours half, smooth cells 0 with their rates
+# bitwise unchanged), conservation to round-off, and with alpha = 1 the FV
+# rate of the subcells (checked by quadrature, not by the engine's tables);
+# degrees 1-4, linear advection, periodic. Fails itself otherwise.
+granular_dg_unit_test(unit/subcell_blending NUMDIFF -a 0 -r 0)

@@ -13,6 +13,7 @@
 #include <granular_dg/dg/boundary.h>
 #include <granular_dg/dg/modal_layout.h>
 #include <granular_dg/dg/operator.h>
+#include <granular_dg/dg/subcell_blending.h>
 #include <granular_dg/dg/time_integrator.h>
 
 #include <algorithm>
@@ -96,7 +97,7 @@ namespace granular_dg::dg
     {
       const auto n = [](const auto &v) { return v.capacity() * sizeof(v[0]); };
       return layout.memory_consumption() + n(h) + n(x_left) + n(coefficients) + n(cell_speed) +
-             n(source_points);
+             n(source_points) + n(raw_alpha) + n(alpha) + n(subcell_points);
     }
 
     void
@@ -173,6 +174,21 @@ namespace granular_dg::dg
               source_points.push_back(internal::SourcePosition<Physics>::of(
                 phys, Point<1>(x_left[c] + h[c] * points[q])));
         }
+      setup_blending();
+    }
+
+    bool
+    set_subcell_blending(const double alpha_max) override
+    {
+      blend.alpha_max = alpha_max;
+      setup_blending();
+      return true;
+    }
+
+    const std::vector<double> &
+    blending_factors() const override
+    {
+      return alpha;
     }
 
     void
@@ -399,9 +415,17 @@ namespace granular_dg::dg
       // before any cell is overwritten
       State<double> first_left, unused;
       traces<nm>(src, 0, first_left, unused);
-      for_active_ranges(active, n_cells, [&](const unsigned int first, const unsigned int end) {
-        apply_range<nm>(t, src, out, first, end, first_left);
-      });
+      if (blend.enabled())
+        {
+          raw_blending_factors<nm>(src);
+          for_active_ranges(active, n_cells, [&](const unsigned int first, const unsigned int end) {
+            apply_range<nm, true>(t, src, out, first, end, first_left);
+          });
+        }
+      else
+        for_active_ranges(active, n_cells, [&](const unsigned int first, const unsigned int end) {
+          apply_range<nm, false>(t, src, out, first, end, first_left);
+        });
     }
 
     /// traces of cell c at its left (xi = 0) and right (xi = 1) ends
@@ -424,8 +448,10 @@ namespace granular_dg::dg
         }
     }
 
-    /// apply_impl() on the cells [first, end)
-    template <unsigned int nm, typename Out>
+    /// apply_impl() on the cells [first, end), with subcell blending or not
+    /// (without: the code of the engine before blending existed, so that
+    /// the compiler's contraction into FMA stays as it was)
+    template <unsigned int nm, bool blending, typename Out>
     void
     apply_range(const double t, const double *src, const Out &out, const unsigned int first,
                 const unsigned int end, const State<double> &first_left) const
@@ -501,14 +527,140 @@ namespace granular_dg::dg
 
           // - [F* phi_k] over the cell: outward normal +1 on the right, -1 on the left
           const double inv_h = 1. / h[c];
-          for (unsigned int i = 0; i < nc; ++i)
-            for (unsigned int k = 0; k < nm; ++k)
-              out(c * dpc + i * nm + k,
-                  (res[i][k] - F_right[i] * at_1[k] + F_left[i] * at_0[k]) * inv_h);
+          const double blended = blending ? blending_factor(c) : 0.;
+          if (blending && blended > 0)
+            {
+              // (1 - alpha) DG + alpha FV, the FV rate before any entry of
+              // the cell is overwritten
+              double fv[nc][nm];
+              subcell_rate<nm>(u, c, t, F_left, F_right, fv);
+              for (unsigned int i = 0; i < nc; ++i)
+                for (unsigned int k = 0; k < nm; ++k)
+                  out(c * dpc + i * nm + k,
+                      (1. - blended) *
+                          ((res[i][k] - F_right[i] * at_1[k] + F_left[i] * at_0[k]) * inv_h) +
+                        blended * fv[i][k]);
+            }
+          else
+            for (unsigned int i = 0; i < nc; ++i)
+              for (unsigned int k = 0; k < nm; ++k)
+                out(c * dpc + i * nm + k,
+                    (res[i][k] - F_right[i] * at_1[k] + F_left[i] * at_0[k]) * inv_h);
           F_left = F_right;
           U0     = V0;
           U1     = V1;
         }
+    }
+
+    /// The tables of subcell blending for the degree (if it is on).
+    void
+    setup_blending()
+    {
+      if (!blend.enabled() || n_cells == 0)
+        return;
+      blend.reinit(n_modes, blend.alpha_max);
+      raw_alpha.assign(n_cells, 0.);
+      alpha.assign(n_cells, 0.);
+      if constexpr (Physics::has_source_term)
+        {
+          subcell_points.clear();
+          for (unsigned int c = 0; c < n_cells; ++c)
+            for (unsigned int j = 0; j < n_modes; ++j)
+              subcell_points.push_back(internal::SourcePosition<Physics>::of(
+                phys, Point<1>(x_left[c] + h[c] * (j + 0.5) / n_modes)));
+        }
+    }
+
+    /// The blending factors before smoothing of the cells this apply
+    /// computes and their neighbours, from the state src (before any of it
+    /// is overwritten).
+    template <unsigned int nm>
+    void
+    raw_blending_factors(const double *src) const
+    {
+      constexpr unsigned int dpc = n_components * nm, ic = Physics::indicator_component;
+      // round-off-sized values (ahead of a front) are not a shock: the
+      // limiter's floor, 1e-10 of the largest cell mean of the variable
+      double scale = 0;
+      for (unsigned int c = 0; c < n_cells; ++c)
+        scale = std::max(scale, std::abs(src[c * dpc + ic * nm]));
+      const double floor2 = (1e-10 * scale) * (1e-10 * scale);
+      const auto   raw = [&](const unsigned int c) {
+        raw_alpha[c] = blend.raw_factor<nm>(src + c * dpc + ic * nm, floor2);
+      };
+      for_active_ranges(active, n_cells, [&](const unsigned int first, const unsigned int end) {
+        for (unsigned int c = first > 0 ? first - 1 : 0; c < std::min(end + 1, n_cells); ++c)
+          raw(c);
+        if (periodic && first == 0)
+          raw(n_cells - 1);
+        if (periodic && end == n_cells)
+          raw(0);
+      });
+    }
+
+    /// The smoothed blending factor of cell c (kept for the output):
+    /// max(alpha_c, alpha_N / 2) over the neighbours N.
+    double
+    blending_factor(const unsigned int c) const
+    {
+      const unsigned int last = n_cells - 1;
+      double             a    = raw_alpha[c];
+      if (c > 0 || periodic)
+        a = std::max(a, 0.5 * raw_alpha[c > 0 ? c - 1 : last]);
+      if (c < last || periodic)
+        a = std::max(a, 0.5 * raw_alpha[c < last ? c + 1 : 0]);
+      alpha[c] = a;
+      return a;
+    }
+
+    /// The first-order finite-volume rate of the p + 1 subcells of cell c
+    /// (modes u), as Legendre modes: the physics' numerical flux between
+    /// subcell means inside, the DG fluxes F_left, F_right at the faces,
+    /// the source at the subcell centres.
+    template <unsigned int nm>
+    void
+    subcell_rate(const double *u, const unsigned int c, const double t,
+                 const State<double> &F_left, const State<double> &F_right,
+                 double (&fv)[n_components][nm]) const
+    {
+      constexpr unsigned int nc = n_components;
+      const auto            &a  = coefficients[c];
+      Tensor<1, 1>           right;
+      right[0] = 1.;
+      std::array<State<double>, nm> mean;
+      for (unsigned int j = 0; j < nm; ++j)
+        for (unsigned int i = 0; i < nc; ++i)
+          {
+            double s = 0;
+            for (unsigned int k = 0; k < nm; ++k)
+              s += u[i * nm + k] * blend.to_subcells[j][k];
+            mean[j][i] = s;
+          }
+      double        rate[nc][nm];
+      State<double> F_minus = F_left;
+      const double  scale   = nm / h[c];
+      for (unsigned int j = 0; j < nm; ++j)
+        {
+          const State<double> F_plus =
+            j + 1 < nm ? phys.numerical_flux(mean[j], mean[j + 1], right, a, a) : F_right;
+          for (unsigned int i = 0; i < nc; ++i)
+            rate[i][j] = -(F_plus[i] - F_minus[i]) * scale;
+          if constexpr (Physics::has_source_term)
+            {
+              const auto S = phys.source(mean[j], subcell_points[c * nm + j], t, a);
+              for (unsigned int i = 0; i < nc; ++i)
+                rate[i][j] += S[i];
+            }
+          F_minus = F_plus;
+        }
+      for (unsigned int i = 0; i < nc; ++i)
+        for (unsigned int k = 0; k < nm; ++k)
+          {
+            double s = 0;
+            for (unsigned int j = 0; j < nm; ++j)
+              s += blend.from_subcells[k][j] * rate[i][j];
+            fv[i][k] = s;
+          }
     }
 
     static constexpr unsigned int max_points = max_modes + 1;
@@ -533,5 +685,10 @@ namespace granular_dg::dg
     mutable double                    cell_speed_floor = 0;
     /// the position argument of source() at every quadrature point
     std::vector<typename internal::SourcePosition<Physics>::type> source_points;
+    /// subcell blending: its tables, the factors of the last apply() before
+    /// and after smoothing, the source positions of the subcell centres
+    SubcellBlending                                               blend;
+    mutable std::vector<double>                                   raw_alpha, alpha;
+    std::vector<typename internal::SourcePosition<Physics>::type> subcell_points;
   };
 } // namespace granular_dg::dg

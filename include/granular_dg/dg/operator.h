@@ -132,6 +132,25 @@ namespace granular_dg::dg
       return false;
     }
 
+    /// Blend the DG rate with a first-order finite-volume rate on p + 1
+    /// subcells, by a factor of at most alpha_max from the modal-energy
+    /// indicator (SubcellBlending; Limiter/subcell blending). False if the
+    /// engine cannot (then nothing changes).
+    virtual bool
+    set_subcell_blending(const double /*alpha_max*/)
+    {
+      return false;
+    }
+
+    /// The blending factor of every owned cell in the last apply() (empty:
+    /// no blending).
+    virtual const std::vector<double> &
+    blending_factors() const
+    {
+      static const std::vector<double> none;
+      return none;
+    }
+
   private:
     mutable VectorType rate;
   };

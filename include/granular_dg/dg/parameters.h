@@ -37,6 +37,8 @@ namespace granular_dg::dg
     /// (0: the automatic one of the degree)
     TroubleIndicator indicator           = TroubleIndicator::everywhere;
     double           indicator_threshold = 0.;
+    /// Limiter/subcell blending: the largest blending factor (0: off)
+    double           blending_max        = 0.;
     unsigned int profile_points = 0;
     bool         write_modes    = false;
 

@@ -102,9 +102,11 @@ namespace granular_dg::dg
     double
     energy() const;
     /// The fields of a snapshot: components, derived quantities and, with a
-    /// limiter, the cell field `troubled` (troubled_field holds its values).
+    /// limiter, the cell field `troubled`, with subcell blending the cell
+    /// field `blending` (the factors of the last stage); cell_fields holds
+    /// their values.
     void
-    fill_data_out(DataOut<dim> &data_out, Vector<float> &troubled_field) const;
+    fill_data_out(DataOut<dim> &data_out, std::array<Vector<float>, 2> &cell_fields) const;
     std::string
     write_vtu(const std::string &directory, unsigned int index, double t) const;
     /// solution-NNNN.h5 by all ranks (parallel HDF5); returns its <Grid>

@@ -123,6 +123,8 @@ namespace granular_dg::dg
     op->initialize_vector(last_good);
     limiter.reinit(dof_handler, solution);
     limiter.set_indicator(method.indicator, method.indicator_threshold);
+    if (method.blending_max > 0)
+      AssertThrow(op->set_subcell_blending(method.blending_max), ExcInternalError());
     quadrature.reinit(limiter.layout());
     hooks.set_all_resuming(run.resume && write_files);
     require_scheme_fits(method, scene);
@@ -171,6 +173,9 @@ namespace granular_dg::dg
       if (const std::string why = why_cells_cannot_be_skipped(method, scene); !why.empty())
         require(false, "Time stepping/skip tolerance", method.skip_tolerance,
                 "0 here: skipping quiet cells needs " + why);
+    require(method.blending_max == 0 || runs_line_engine(dim, method.engine),
+            "Limiter/subcell blending", "true",
+            "false here: subcell blending is built in the line engine (serial 1D runs)");
     if (method.scheme == TimeScheme::ssp_rk3)
       return;
     const std::string operation = HookList<dim>(scene.hooks).stage_operation();
@@ -205,6 +210,8 @@ namespace granular_dg::dg
     i.method.add("engine", op->engine_name());
     i.method.add("numerical_flux", method.flux);
     i.method.add("limiter", method.limiter_name);
+    if (method.blending_max > 0)
+      i.method.add("subcell_blending", method.blending_max);
     i.method.add("scheme", time_scheme_name(method.scheme));
     i.bytes_per_snapshot =
       snapshot_bytes(i.n_cells, method.degree, dim,
@@ -406,6 +413,8 @@ namespace granular_dg::dg
     header.push_back("troubled_cells");
     if (method.indicator != TroubleIndicator::everywhere)
       header.push_back("flagged_cells");
+    if (method.blending_max > 0)
+      header.push_back("blended_cells");
     if (scene.exact)
       {
         header.push_back("l2_error");
@@ -426,6 +435,11 @@ namespace granular_dg::dg
     row.push_back(Utilities::MPI::sum(troubled, solution.get_mpi_communicator()));
     if (method.indicator != TroubleIndicator::everywhere)
       row.push_back(Utilities::MPI::sum(limiter.n_flagged(), solution.get_mpi_communicator()));
+    if (method.blending_max > 0)
+      {
+        const auto &alpha = op->blending_factors();
+        row.push_back(std::count_if(alpha.begin(), alpha.end(), [](const double a) { return a > 0; }));
+      }
     if (scene.exact)
       {
         const auto e  = errors(t);
@@ -583,22 +597,27 @@ namespace granular_dg::dg
 
   template <int dim, typename Physics>
   void
-  Solver<dim, Physics>::fill_data_out(DataOut<dim> &data_out, Vector<float> &troubled_field) const
+  Solver<dim, Physics>::fill_data_out(DataOut<dim>                 &data_out,
+                                      std::array<Vector<float>, 2> &cell_fields) const
   {
     data_out.attach_dof_handler(dof_handler);
     const internal::DerivedFields<dim, Physics> derived(scene.physics);
     data_out.add_data_vector(solution, Physics::component_names());
     data_out.add_data_vector(solution, derived);
     // the cells the limiter modified in the last stage
+    const auto add_cell_field = [&](Vector<float> &field, const auto &values,
+                                    const std::string &name) {
+      field.reinit(dof_handler.get_triangulation().n_active_cells());
+      unsigned int k = 0;
+      for (const auto &cell : dof_handler.active_cell_iterators())
+        if (cell->is_locally_owned())
+          field[cell->active_cell_index()] = values[k++];
+      data_out.add_data_vector(field, name, DataOut<dim>::type_cell_data);
+    };
     if (limiter.get_type() != LimiterType::none)
-      {
-        troubled_field.reinit(dof_handler.get_triangulation().n_active_cells());
-        unsigned int k = 0;
-        for (const auto &cell : dof_handler.active_cell_iterators())
-          if (cell->is_locally_owned())
-            troubled_field[cell->active_cell_index()] = limiter.troubled_cells()[k++];
-        data_out.add_data_vector(troubled_field, "troubled", DataOut<dim>::type_cell_data);
-      }
+      add_cell_field(cell_fields[0], limiter.troubled_cells(), "troubled");
+    if (!op->blending_factors().empty())
+      add_cell_field(cell_fields[1], op->blending_factors(), "blending");
     data_out.build_patches(mapping, std::max(1u, method.degree));
   }
 
@@ -609,8 +628,8 @@ namespace granular_dg::dg
   {
     const MPI_Comm comm = solution.get_mpi_communicator();
     DataOut<dim>   data_out;
-    Vector<float>  troubled_field;
-    fill_data_out(data_out, troubled_field);
+    std::array<Vector<float>, 2> cell_fields;
+    fill_data_out(data_out, cell_fields);
     // DG fields: vertices of neighbouring cells are not merged (the jumps
     // stay); the values are written as doubles
     DataOutBase::DataOutFilter filter(DataOutBase::DataOutFilterFlags(false, true));
@@ -640,8 +659,8 @@ namespace granular_dg::dg
     // linear patches there, Lagrange cells in 2D
     flags.write_higher_order_cells = (dim > 1);
     data_out.set_flags(flags);
-    Vector<float> troubled_field;
-    fill_data_out(data_out, troubled_field);
+    std::array<Vector<float>, 2> cell_fields;
+    fill_data_out(data_out, cell_fields);
 
     const unsigned int n_ranks = Utilities::MPI::n_mpi_processes(comm);
     const unsigned int rank    = Utilities::MPI::this_mpi_process(comm);

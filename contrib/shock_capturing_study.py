@@ -1,0 +1,154 @@
+#!/usr/bin/python3
+"""Shock capturing in the 1D scenes (issue 21): error against CPU time for
+  none        no limiter, no blending
+  everywhere  the TVB minmod limiter in every cell (the scenes' old default)
+  indicator   the minmod limiter in the cells the modal-energy indicator flags
+  blending    subcell blending (Limiter/subcell blending), no limiter
+  both        subcell blending and the minmod limiter on flagged cells
+on three cases, P2, on a ladder of meshes:
+  layered     prm/layered_1d.prm (b), t = 240, 2-16 cells per layer, flux-variable
+              limiter; L1 strain error against REF_DIR/layered_ref/modes-0003.csv
+              (P3, 32 cells per layer, no limiter)
+  shock       prm/elasticity_shock.prm (a), t = 240, 300-2400 cells, characteristic
+              limiter; L1 strain error against REF_DIR/shock_ref/modes-0003.csv
+              (9600 cells, limiter everywhere); also the strain range (overshoot)
+  column      tests/column/m1_base.prm (m = 1, (0, 5), t = 4), 50-400 cells,
+              characteristic limiter; L1 error of strain + velocity against the
+              closed form, and |strain(3, 4) - reference| against
+              REF_DIR/column_ref/profile-0003.csv (3200 cells, limiter everywhere)
+
+    contrib/shock_capturing_study.py BUILD_DIR OUT_DIR REF_DIR [--quick]
+
+Writes OUT_DIR/shock-capturing.csv and OUT_DIR/shock-capturing.png (one
+work-precision panel per case). The references (doc/study/README.md):
+    granular_dg prm/layered_1d.prm --set "Mesh/cells x=9600" --set Discretization/degree=3 \\
+      --set Limiter/scheme=none --set "Time stepping/CFL number=0.1" \\
+      --set "Output/write modes=true" --set Output/directory=REF_DIR/layered_ref
+    granular_dg prm/elasticity_shock.prm --set "Mesh/cells x=9600" --set Limiter/indicator=everywhere \\
+      --set "Output/write modes=true" --set Output/directory=REF_DIR/shock_ref
+    granular_dg tests/column/m1_base.prm --set Mesh/cells=3200 \\
+      --set "Output/profile points per cell=3" --set Output/directory=REF_DIR/column_ref
+"""
+import argparse
+import csv
+import json
+import os
+import subprocess
+
+import matplotlib
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt
+import numpy as np
+
+# name: (limiter on, indicator, subcell blending)
+CONFIGS = {
+    "none": (False, "everywhere", False),
+    "everywhere": (True, "everywhere", False),
+    "indicator": (True, "modal_energy", False),
+    "blending": (False, "everywhere", True),
+    "both": (True, "modal_energy", True),
+}
+STYLES = {"none": "k^:", "everywhere": "o-", "indicator": "D-.", "blending": "s--", "both": "v-"}
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+CASES = {
+    "layered": dict(prm="prm/layered_1d.prm", limiter="flux_variables", mesh="Mesh/cells x",
+                    cells=[600, 1200, 2400, 4800], quick=[1200], ref="layered_ref/modes-0003.csv",
+                    title="layered 1D (b), t = 240: L1 strain"),
+    "shock": dict(prm="prm/elasticity_shock.prm", limiter="characteristic", mesh="Mesh/cells x",
+                  cells=[300, 600, 1200, 2400], quick=[600], ref="shock_ref/modes-0003.csv",
+                  title="shock (a), t = 240: L1 strain"),
+    "column": dict(prm="tests/column/m1_base.prm", limiter="characteristic", mesh="Mesh/cells",
+                   cells=[50, 100, 200, 400], quick=[200], ref="column_ref/profile-0003.csv",
+                   title="column m = 1, t = 4: L1 (strain + velocity)"),
+}
+
+
+def profile_value(path, column, z):
+    """The mean of the values of column at x = z (both sides of a face)."""
+    d = np.genfromtxt(path, delimiter=",", skip_header=1, names=True)
+    at = np.isclose(d["x"], z, atol=1e-9)
+    if at.any():
+        return float(np.mean(d[column][at]))
+    return float(np.interp(z, d["x"], d[column]))
+
+
+def run(build, case, cells, config, out, ref_dir):
+    c = CASES[case]
+    limiter_on, indicator, blending = CONFIGS[config]
+    d = os.path.join(out, "%s-%s-%d" % (case, config, cells))
+    args = [os.path.join(build, "granular_dg"), os.path.join(HERE, "..", c["prm"]),
+            "--set", "Output/directory=" + d, "--set", "Output/overwrite=true",
+            "--set", "Output/write vtu=false", "--set", "Output/progress interval=0",
+            "--set", "%s=%d" % (c["mesh"], cells),
+            "--set", "Limiter/scheme=" + (c["limiter"] if limiter_on else "none"),
+            "--set", "Limiter/indicator=" + indicator,
+            "--set", "Limiter/subcell blending=%s" % ("true" if blending else "false")]
+    if case == "column":
+        args += ["--set", "Output/profile points per cell=3"]
+    else:
+        args += ["--set", "Output/output times=",
+                 "--set", "Exact solution/reference file=" + os.path.join(ref_dir, c["ref"])]
+    subprocess.run(args, check=True, stdout=subprocess.DEVNULL)
+    with open(os.path.join(d, "summary.json")) as f:
+        s = json.load(f)
+    row = {"case": case, "config": config, "cells": cells, "n_dofs": s["n_dofs"],
+           "time_loop_cpu_s": s["time_loop_cpu_s"]}
+    with open(os.path.join(d, "timeseries.csv")) as f:
+        last = list(csv.DictReader(f))[-1]
+    if case == "column":
+        row["error"] = float(last["l1_error_strain"]) + float(last["l1_error_velocity"])
+        ref = os.path.join(ref_dir, c["ref"])
+        row["error_at_3_4"] = abs(profile_value(os.path.join(d, "profile-0003.csv"), "strain", 3.) -
+                                  profile_value(ref, "strain", 3.))
+    else:
+        row["error"] = s["errors"]["component_0_l1_l2_linf"][0]
+        row["min_strain"] = s["diagnostics"]["min_strain"]
+        row["max_strain"] = s["diagnostics"]["max_strain"]
+    row["blended_cells_end"] = int(float(last.get("blended_cells", 0)))
+    row["flagged_cells_end"] = int(float(last.get("flagged_cells", 0)))
+    return row
+
+
+def main():
+    p = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    p.add_argument("build")
+    p.add_argument("out")
+    p.add_argument("ref_dir")
+    p.add_argument("--quick", action="store_true", help="one mesh per case")
+    p.add_argument("--cases", default=",".join(CASES))
+    a = p.parse_args()
+    rows = []
+    for case in a.cases.split(","):
+        for config in CONFIGS:
+            for cells in CASES[case]["quick" if a.quick else "cells"]:
+                rows.append(run(a.build, case, cells, config, a.out, a.ref_dir))
+                print(rows[-1], flush=True)
+    os.makedirs(a.out, exist_ok=True)
+    keys = []
+    for r in rows:
+        keys += [k for k in r if k not in keys]
+    with open(os.path.join(a.out, "shock-capturing.csv"), "w") as f:
+        w = csv.DictWriter(f, fieldnames=keys)
+        w.writeheader()
+        w.writerows(rows)
+
+    cases = a.cases.split(",")
+    fig, axes = plt.subplots(1, len(cases), figsize=(5 * len(cases), 4.3), squeeze=False)
+    for ax, case in zip(axes[0], cases):
+        for config in CONFIGS:
+            sel = [r for r in rows if r["case"] == case and r["config"] == config]
+            ax.loglog([r["time_loop_cpu_s"] for r in sel], [r["error"] for r in sel],
+                      STYLES[config], label=config)
+        ax.set_title(CASES[case]["title"], fontsize=9)
+        ax.set_xlabel("CPU time of the time loop [s]")
+        ax.grid(alpha=0.3, which="both")
+    axes[0][0].set_ylabel("error against the reference")
+    axes[0][0].legend(fontsize=8)
+    fig.tight_layout()
+    fig.savefig(os.path.join(a.out, "shock-capturing.png"), dpi=110)
+
+
+if __name__ == "__main__":
+    main()
