@@ -182,6 +182,8 @@ def flux_limiter(flux, limiter):
 
 # the limiter only in the cells the modal-energy indicator flags (issue 21)
 FLAGGED = ["Limiter/indicator=modal_energy"]
+# subcell blending (issue 21), alone (no limiter)
+BLENDING = ["Limiter/subcell blending=true"]
 
 
 # Stability maps. choices: (label, --set overrides); quick_choices: indices
@@ -215,7 +217,8 @@ STABILITY = {
                  ("impedance, no limiter", flux_limiter("impedance", "none")),
                  ("impedance + flux_variables", flux_limiter("impedance", "flux_variables")),
                  ("impedance + flux_variables, flagged cells",
-                  flux_limiter("impedance", "flux_variables") + FLAGGED)],
+                  flux_limiter("impedance", "flux_variables") + FLAGGED),
+                 ("impedance, subcell blending", flux_limiter("impedance", "none") + BLENDING)],
         quick_choices=[1, 3]),
     # the column m = 1 (friction projection) against the closed form
     "column": dict(
@@ -226,7 +229,8 @@ STABILITY = {
         choices=[("characteristic", ["Limiter/scheme=characteristic"]),
                  ("componentwise", ["Limiter/scheme=componentwise"]),
                  ("no limiter", ["Limiter/scheme=none"]),
-                 ("characteristic, flagged cells", ["Limiter/scheme=characteristic"] + FLAGGED)],
+                 ("characteristic, flagged cells", ["Limiter/scheme=characteristic"] + FLAGGED),
+                 ("subcell blending", ["Limiter/scheme=none"] + BLENDING)],
         quick_choices=[0, 1]),
     # Burgers on the star graph with a shock through the vertex (exact solution)
     "network": dict(
