@@ -190,6 +190,8 @@ namespace granular_dg::network
         const System system(e.flux, disc.flux);
         ed->op = dg::make_operator<1>(engine, system, boundary);
         ed->op->reinit(ed->mapping, ed->dof_handler);
+        if (disc.blending_max > 0)
+          AssertThrow(ed->op->set_subcell_blending(disc.blending_max), ExcInternalError());
         ed->limiter = std::make_unique<EdgeLimiter>(system, disc.limiter, disc.tvb_M, boundary);
         ed->limiter->reinit(ed->dof_handler);
         ed->limiter->set_indicator(disc.indicator, disc.indicator_threshold);
@@ -286,6 +288,8 @@ namespace granular_dg::network
     i.method.add("engine", edge[ranks->edges().front()]->op->engine_name());
     i.method.add("numerical_flux", numerical_flux_names.name(disc.flux));
     i.method.add("limiter", disc.limiter_name);
+    if (disc.blending_max > 0)
+      i.method.add("subcell_blending", disc.blending_max);
     i.method.add("scheme", integrator);
     i.method.add("n_edges", static_cast<long long>(net.edges.size()));
     const unsigned int points = profile_points();

@@ -223,6 +223,11 @@ namespace granular_dg::network
       c.disc.tvb_M          = method.tvb_M;
       c.disc.indicator      = method.indicator;
       c.disc.indicator_threshold = method.indicator_threshold;
+      require(method.blending_max == 0 || method.engine != dg::Engine::matrix_free,
+              "Limiter/subcell blending", "true",
+              "false with Discretization/engine = matrix_free (subcell blending is built in "
+              "the line engine, which the edges use by default)");
+      c.disc.blending_max = method.blending_max;
       c.disc.profile_points = method.profile_points;
       c.disc.write_vtu      = common.write_vtu;
       common.require_format_fits(1);  // the edges are 1D

@@ -69,6 +69,8 @@ namespace granular_dg::network
     double            tvb_M   = 0.;
     dg::TroubleIndicator indicator = dg::TroubleIndicator::everywhere;
     double            indicator_threshold = 0.;
+    /// Limiter/subcell blending on every edge: the largest factor (0: off)
+    double            blending_max = 0.;
     /// 2^l at grid level l: an edge of length L gets round(L * this) cells
     double            cells_per_unit_length = 256;
     Integrator        integrator          = Integrator::automatic;
