@@ -43,6 +43,11 @@ namespace granular_dg::dg
     return 0.5 * std::pow(10., -1.8 * std::pow(degree + 1., 0.25));
   }
 
+  /// A cell whose indicator variable is below this fraction of the variable's
+  /// largest cell mean holds round-off (ahead of a front), not a shock: the
+  /// floor of the modal-energy indicator and of subcell blending.
+  inline constexpr double indicator_floor_fraction = 1e-10;
+
   /// What the limiter limits: nothing, the conserved variables, the
   /// characteristic fields, or variables the physics names (its
   /// limiting_variables(), called by the name the physics gives them).

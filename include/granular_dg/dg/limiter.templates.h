@@ -454,7 +454,8 @@ namespace granular_dg::dg
           scale = std::max(scale, std::abs(indicator == TroubleIndicator::kxrcf ?
                                              jump_variable(average(i), i) :
                                              average(i)[Physics::indicator_component]));
-        indicator_floor = 1e-10 * Utilities::MPI::max(scale, u.get_mpi_communicator());
+        indicator_floor =
+          indicator_floor_fraction * Utilities::MPI::max(scale, u.get_mpi_communicator());
       }
     if (indicator == TroubleIndicator::kxrcf)
       {

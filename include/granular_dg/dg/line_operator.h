@@ -580,11 +580,12 @@ namespace granular_dg::dg
     {
       constexpr unsigned int dpc = n_components * nm, ic = Physics::indicator_component;
       // round-off-sized values (ahead of a front) are not a shock: the
-      // limiter's floor, 1e-10 of the largest cell mean of the variable
+      // limiter's floor, a fraction of the largest cell mean of the variable
       double scale = 0;
       for (unsigned int c = 0; c < n_cells; ++c)
         scale = std::max(scale, std::abs(src[c * dpc + ic * nm]));
-      const double floor2 = (1e-10 * scale) * (1e-10 * scale);
+      const double floor  = indicator_floor_fraction * scale;
+      const double floor2 = floor * floor;
       const auto   raw = [&](const unsigned int c) {
         raw_alpha[c] = blend.raw_factor<nm>(src + c * dpc + ic * nm, floor2);
       };

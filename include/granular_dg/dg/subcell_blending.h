@@ -45,7 +45,6 @@ namespace granular_dg::dg
     reinit(const unsigned int n_modes, const double largest_alpha)
     {
       alpha_max = largest_alpha;
-      nm        = n_modes;
       threshold = modal_energy_threshold(n_modes - 1);
       // to_subcells[j][k]: the mean of L_k over subcell j of [0, 1]
       FullMatrix<double> A(n_modes, n_modes);
@@ -77,12 +76,14 @@ namespace granular_dg::dg
     }
 
     /// The blending factor before smoothing of a cell whose indicator
-    /// variable has the modes q[0..nm); floor2: the square of the size below
+    /// variable has the modes q[0..n); floor2: the square of the size below
     /// which a cell is round-off (not blended).
     template <unsigned int n>
     double
     raw_factor(const double *q, const double floor2) const
     {
+      // (the share E of the limiter's modal_energy indicator, summed in its
+      // own order: one shared sum would change the blended runs' rounding)
       double total = 0;
       for (unsigned int k = 0; k < n; ++k)
         total += q[k] * q[k];
@@ -98,7 +99,6 @@ namespace granular_dg::dg
     /// to_subcells[j][k]: mean of mode k over subcell j; from_subcells: its inverse
     Table        to_subcells{}, from_subcells{};
     double       alpha_max = 0, threshold = 0;
-    unsigned int nm        = 1;
 
   private:
     static constexpr double alpha_min = 1e-3;
