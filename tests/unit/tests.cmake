@@ -29,3 +29,9 @@ set_tests_properties(unit/shared_blocks PROPERTIES RUN_SERIAL TRUE)
 # rate of the subcells (checked by quadrature, not by the engine's tables);
 # degrees 1-4, linear advection, periodic. Fails itself otherwise.
 granular_dg_unit_test(unit/subcell_blending NUMDIFF -a 0 -r 0)
+# SIMD batches of the line engine (issue 18): rates with batches equal the
+# cell-by-cell kernel to 1e-14 of their size (elasticity quadratic/impedance
+# and exponential/LLF with two materials, the column with gravity, periodic
+# advection; degrees 0-4), and a stage written in place equals it written
+# out of place, bit for bit. Fails itself otherwise.
+granular_dg_unit_test(unit/line_batches NUMDIFF -a 0 -r 0)

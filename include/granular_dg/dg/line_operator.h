@@ -4,6 +4,7 @@
 #include <deal.II/base/mpi.h>
 #include <deal.II/base/polynomial.h>
 #include <deal.II/base/quadrature_lib.h>
+#include <deal.II/base/vectorization.h>
 #include <deal.II/distributed/tria_base.h>
 #include <deal.II/dofs/dof_handler.h>
 #include <deal.II/fe/mapping.h>
@@ -276,8 +277,26 @@ namespace granular_dg::dg
       return phys;
     }
 
+    /// Whether apply() may run cells in SIMD batches (true; false: cell by
+    /// cell, the kernel of the scalar build, for tests/unit/line_batches).
+    void
+    set_simd_batches(const bool on)
+    {
+      simd_batches = on;
+    }
+
   private:
     static constexpr unsigned int max_modes = 5;
+    using VA                                = VectorizedArray<double>;
+    /// cells per SIMD batch of apply_range() (the native width of the SIMD
+    /// build, 1 without it)
+    static constexpr unsigned int batch_width = VA::size();
+    /// Whether apply_range() runs the interior cells in SIMD batches: with
+    /// more than one lane, and when source() takes the position as a point
+    /// (a physics' own source_position() type has no batched form here).
+    static constexpr bool batched =
+      batch_width > 1 &&
+      std::is_same_v<typename internal::SourcePosition<Physics>::type, Point<1>>;
 
     /// f(std::integral_constant<unsigned int, n_modes>()): the mode loops of
     /// the per-point kernels unrolled for the degree at hand
@@ -474,7 +493,18 @@ namespace granular_dg::dg
       else
         F_left = -boundary_flux(*left_bc, U0, -1., x_left[0], t, coefficients[0]);
 
-      for (unsigned int c = first; c < end; ++c)
+      unsigned int c = first;
+      if constexpr (batched && !blending)
+        {
+          // SIMD batches of cells in the range whose right neighbour exists
+          // (it is only read); the rest cell by cell
+          for (; simd_batches && c + batch_width < n_cells && c + batch_width <= end;
+               c += batch_width)
+            apply_batch<nm>(t, src, out, c, F_left);
+          if (c != first)
+            traces<nm>(src, c, U0, U1);
+        }
+      for (; c < end; ++c)
         {
           const double *u           = src + c * dpc;
           const auto   &a           = coefficients[c];
@@ -550,6 +580,109 @@ namespace granular_dg::dg
           U0     = V0;
           U1     = V1;
         }
+    }
+
+    /// The cells [c, c + W) of apply_range() as one SIMD batch (lane l:
+    /// cell c + l; c + W < n_cells): the same operations as the cell loop
+    /// there, lane by lane. F_left is the flux through the batch's left
+    /// face on entry and through its right face on return. Reads the cells
+    /// c .. c + W before it writes c .. c + W - 1 (out may overwrite src).
+    template <unsigned int nm, typename Out>
+    void
+    apply_batch(const double t, const double *src, const Out &out, const unsigned int c,
+                State<double> &F_left) const
+    {
+      constexpr unsigned int nc = n_components, nq = nm + 1, dpc = nc * nm, W = batch_width;
+      unsigned int           offsets[W], coefficient_offsets[W];
+      for (unsigned int l = 0; l < W; ++l)
+        {
+          offsets[l]             = l * dpc;
+          coefficient_offsets[l] = l * n_coefficients;
+        }
+      // the modes of the cells c + l (u) and c + 1 + l (v), their coefficients
+      VA u[dpc], v[dpc];
+      vectorized_load_and_transpose(dpc, src + c * dpc, offsets, u);
+      vectorized_load_and_transpose(dpc, src + (c + 1) * dpc, offsets, v);
+      Coefficients<VA> a, a_next;
+      if constexpr (n_coefficients > 0)
+        {
+          vectorized_load_and_transpose(n_coefficients, coefficients[c].data(),
+                                        coefficient_offsets, a.data());
+          vectorized_load_and_transpose(n_coefficients, coefficients[c + 1].data(),
+                                        coefficient_offsets, a_next.data());
+        }
+      VA h_c;
+      h_c.load(&h[c]);
+
+      VA res[nc][nm] = {};
+      for (unsigned int q = 0; q < nq; ++q)
+        {
+          const auto &B = basis[q];
+          const auto &D = derivative[q];
+          State<VA>   U;
+          for (unsigned int i = 0; i < nc; ++i)
+            {
+              VA s = 0.;
+              for (unsigned int k = 0; k < nm; ++k)
+                s += u[i * nm + k] * B[k];
+              U[i] = s;
+            }
+          const auto F = phys.flux(U, a);
+          for (unsigned int i = 0; i < nc; ++i)
+            {
+              const VA wf = weights[q] * F[i][0];
+              for (unsigned int k = 0; k < nm; ++k)
+                res[i][k] += wf * D[k];
+            }
+          if constexpr (Physics::has_source_term)
+            {
+              Point<1, VA> x;
+              for (unsigned int l = 0; l < W; ++l)
+                x[0][l] = source_points[(c + l) * nq + q][0];
+              const auto S = phys.source(U, x, t, a);
+              for (unsigned int i = 0; i < nc; ++i)
+                {
+                  const VA ws = h_c * weights[q] * S[i];
+                  for (unsigned int k = 0; k < nm; ++k)
+                    res[i][k] += ws * B[k];
+                }
+            }
+        }
+
+      // the faces c + l | c + l + 1: right traces of u, left traces of v
+      State<VA> U1, V0;
+      for (unsigned int i = 0; i < nc; ++i)
+        {
+          VA s0 = 0., s1 = 0.;
+          for (unsigned int k = 0; k < nm; ++k)
+            {
+              s1 += u[i * nm + k] * at_1[k];
+              s0 += v[i * nm + k] * at_0[k];
+            }
+          U1[i] = s1;
+          V0[i] = s0;
+        }
+      Tensor<1, 1, VA> right;
+      right[0]                  = 1.;
+      const State<VA> F_right   = phys.numerical_flux(U1, V0, right, a, a_next);
+      State<VA>       F_left_va;
+      for (unsigned int i = 0; i < nc; ++i)
+        {
+          F_left_va[i][0] = F_left[i];
+          for (unsigned int l = 1; l < W; ++l)
+            F_left_va[i][l] = F_right[i][l - 1];
+          F_left[i] = F_right[i][W - 1];
+        }
+
+      const VA inv_h = 1. / h_c;
+      VA       rate[dpc];
+      for (unsigned int i = 0; i < nc; ++i)
+        for (unsigned int k = 0; k < nm; ++k)
+          rate[i * nm + k] = (res[i][k] - F_right[i] * at_1[k] + F_left_va[i] * at_0[k]) * inv_h;
+      double rates[W * dpc];
+      vectorized_transpose_and_store(false, dpc, rate, offsets, rates);
+      for (unsigned int j = 0; j < W * dpc; ++j)
+        out(c * dpc + j, rates[j]);
     }
 
     /// The tables of subcell blending for the degree (if it is on).
@@ -671,7 +804,7 @@ namespace granular_dg::dg
     ModalLayout<1>                    layout;
     unsigned int                      n_cells = 0, n_modes = 1, n_q = 1;
     std::size_t                       n_dofs   = 0;
-    bool                              periodic = false;
+    bool                              periodic = false, simd_batches = true;
     const BoundaryCondition<1>       *left_bc = nullptr, *right_bc = nullptr;
     std::vector<double>               h, x_left;
     /// Gauss points and weights on [0, 1]; basis[q][k] = L_k(x_q), derivative[q][k] = L_k'(x_q)
