@@ -73,4 +73,40 @@ namespace granular_dg
         e[v] = x_in[v];
     return e;
   }
+
+  /// Lane tests for the admissibility checks that take double or
+  /// VectorizedArray (the line engine's SIMD batches): whether x is finite
+  /// in every lane ...
+  inline bool
+  all_finite(const double x)
+  {
+    return std::isfinite(x);
+  }
+
+  template <std::size_t width>
+  bool
+  all_finite(const dealii::VectorizedArray<double, width> &x)
+  {
+    bool ok = true;
+    for (unsigned int v = 0; v < width; ++v)
+      ok &= std::isfinite(x[v]);
+    return ok;
+  }
+
+  /// ... and whether x > 0 in every lane (false for NaN).
+  inline bool
+  all_positive(const double x)
+  {
+    return x > 0.;
+  }
+
+  template <std::size_t width>
+  bool
+  all_positive(const dealii::VectorizedArray<double, width> &x)
+  {
+    bool ok = true;
+    for (unsigned int v = 0; v < width; ++v)
+      ok &= x[v] > 0.;
+    return ok;
+  }
 } // namespace granular_dg

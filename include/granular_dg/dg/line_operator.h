@@ -307,53 +307,111 @@ namespace granular_dg::dg
       return with_n_modes(n_modes, f);
     }
 
-    /// state_at() with nm modes (the same sums in the same order)
+    /// The modes of the cells c .. c + W - 1 (lane l: cell c + l) and
+    /// their coefficients, for the SIMD batches.
     template <unsigned int nm>
-    State<double>
-    state_at(const double *x, const std::array<double, max_modes> &B) const
+    void
+    load_batch(const double *src, const unsigned int c, VA (&u)[n_components * nm],
+               Coefficients<VA> &a) const
     {
-      State<double> U;
+      constexpr unsigned int dpc = n_components * nm;
+      unsigned int           offsets[batch_width], coefficient_offsets[batch_width];
+      for (unsigned int l = 0; l < batch_width; ++l)
+        {
+          offsets[l]             = l * dpc;
+          coefficient_offsets[l] = l * n_coefficients;
+        }
+      vectorized_load_and_transpose(dpc, src + c * dpc, offsets, u);
+      if constexpr (n_coefficients > 0)
+        vectorized_load_and_transpose(n_coefficients, coefficients[c].data(),
+                                      coefficient_offsets, a.data());
+    }
+
+    /// The state at point q of the cells with modes u (double or a batch).
+    template <unsigned int nm, typename Number>
+    State<Number>
+    point_state(const Number *u, const unsigned int q) const
+    {
+      State<Number> U;
       for (unsigned int i = 0; i < n_components; ++i)
-        for (unsigned int k = 0; k < nm; ++k)
-          U[i] += x[i * nm + k] * B[k];
+        {
+          Number s = 0.;
+          for (unsigned int k = 0; k < nm; ++k)
+            s += u[i * nm + k] * basis[q][k];
+          U[i] = s;
+        }
       return U;
     }
 
+    /// The cells [first, end): SIMD batches through batch(c) (W cells from
+    /// c) if batches, the rest cell by cell through single(c).
+    template <bool batches, typename Batch, typename Single>
+    void
+    for_cells(const unsigned int first, const unsigned int end, const Batch &batch,
+              const Single &single) const
+    {
+      unsigned int c = first;
+      if constexpr (batches && batch_width > 1)
+        for (; simd_batches && c + batch_width <= end; c += batch_width)
+          batch(c);
+      for (; c < end; ++c)
+        single(c);
+    }
+
+    /// (in SIMD batches where apply() runs them: the hopper's wave speed
+    /// rounds differently in its SIMD form, which moved its march by 7e-11)
     template <unsigned int nm>
     double
     max_speed_impl(const double *src, const double min_speed) const
     {
       // the largest speed of a cell, divided once by h: the same maximum
       // (division by h > 0 is monotone)
-      auto cell_value = [&](const unsigned int c) {
-        double cell_max = 0;
+      const auto cell_value = [&](const auto *u, const auto &a, const auto &h_c) {
+        using Number  = std::remove_cv_t<std::remove_reference_t<decltype(h_c)>>;
+        Number cell_max = 0.;
         for (unsigned int q = 0; q < nm + 1; ++q)
-          cell_max = std::max(cell_max,
-                              std::max(phys.max_wave_speed(
-                                         state_at<nm>(src + c * n_components * nm, basis[q]),
-                                         coefficients[c]),
-                                       min_speed));
-        return cell_max / h[c];
+          cell_max = std::max(cell_max, std::max(phys.max_wave_speed(point_state<nm>(u, q), a),
+                                                 Number(min_speed)));
+        return cell_max / h_c;
+      };
+      const auto single = [&](const unsigned int c) {
+        return cell_value(src + c * n_components * nm, coefficients[c], h[c]);
+      };
+      const auto batch = [&](const unsigned int c) {
+        VA               u[n_components * nm], h_c;
+        Coefficients<VA> a;
+        load_batch<nm>(src, c, u, a);
+        h_c.load(&h[c]);
+        return cell_value(u, a, h_c);
       };
       if (!active)
         {
           double result = 0;
-          for (unsigned int c = 0; c < n_cells; ++c)
-            result = std::max(result, cell_value(c));
+          for_cells<batched>(
+            0, n_cells,
+            [&](const unsigned int c) {
+              const VA speed = batch(c);
+              for (unsigned int l = 0; l < batch_width; ++l)
+                result = std::max(result, speed[l]);
+            },
+            [&](const unsigned int c) { result = std::max(result, single(c)); });
           return result;
         }
       // with active cells: refresh the cells the last step computed
+      const auto refresh = [&](const unsigned int first, const unsigned int end) {
+        for_cells<batched>(
+          first, end, [&](const unsigned int c) { batch(c).store(&cell_speed[c]); },
+          [&](const unsigned int c) { cell_speed[c] = single(c); });
+      };
       if (cell_speed.size() != n_cells || min_speed != cell_speed_floor)
         {
           cell_speed.assign(n_cells, 0.);
           cell_speed_floor = min_speed;
-          for (unsigned int c = 0; c < n_cells; ++c)
-            cell_speed[c] = cell_value(c);
+          refresh(0, n_cells);
         }
       else
         for (const auto &[first, end] : active->ranges())
-          for (unsigned int c = first; c < end; ++c)
-            cell_speed[c] = cell_value(c);
+          refresh(first, end);
       return *std::max_element(cell_speed.begin(), cell_speed.end());
     }
 
@@ -362,20 +420,42 @@ namespace granular_dg::dg
     unsigned int
     first_inadmissible(const double *src) const
     {
+      // batches where the physics' is_admissible() takes them
+      constexpr bool batches =
+        internal::has_is_admissible<Physics, State<VA>, Coefficients<VA>>::value;
       unsigned int first_bad = n_cells;
-      for_active_ranges(active, n_cells, [&](const unsigned int first, const unsigned int end) {
-        for (unsigned int c = first; c < end && first_bad == n_cells; ++c)
+      const auto   single    = [&](const unsigned int c) {
+        if (first_bad == n_cells &&
+            !points_admissible<nm>(src + c * n_components * nm, coefficients[c]))
+          first_bad = c;
+      };
+      const auto batch = [&](const unsigned int c) {
+        if constexpr (batches)
           {
-            // all points of the cell, without a branch per point
-            bool ok = true;
-            for (unsigned int q = 0; q < nm + 1; ++q)
-              ok &= admissible(phys, state_at<nm>(src + c * n_components * nm, basis[q]),
-                               coefficients[c]);
-            if (!ok)
-              first_bad = c;
+            VA               u[n_components * nm];
+            Coefficients<VA> a;
+            load_batch<nm>(src, c, u, a);
+            if (first_bad == n_cells && !points_admissible<nm>(u, a))
+              for (unsigned int l = 0; l < batch_width; ++l)
+                single(c + l);
           }
+      };
+      for_active_ranges(active, n_cells, [&](const unsigned int first, const unsigned int end) {
+        for_cells<batches>(first, end, batch, single);
       });
       return first_bad;
+    }
+
+    /// Whether the states at all points of the cell with modes u (or of
+    /// the batch) are admissible, without a branch per point.
+    template <unsigned int nm, typename Number>
+    bool
+    points_admissible(const Number *u, const Coefficients<Number> &a) const
+    {
+      bool ok = true;
+      for (unsigned int q = 0; q < nm + 1; ++q)
+        ok &= admissible(phys, point_state<nm>(u, q), a);
+      return ok;
     }
 
     std::size_t

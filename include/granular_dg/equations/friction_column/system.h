@@ -38,6 +38,7 @@
 #include <deal.II/base/tensor.h>
 #include <deal.II/base/vectorization.h>
 
+#include <granular_dg/base/vectorized_math.h>
 #include <granular_dg/dg/boundary.h>
 #include <granular_dg/dg/numerical_flux.h>
 
@@ -281,10 +282,12 @@ namespace granular_dg::column
       L[1][1]           = -0.5 / cn;
     }
 
+    /// Whether U is finite (with VectorizedArray: in every lane).
+    template <typename Number>
     bool
-    is_admissible(const State<double> &U, const Coefficients<double> &) const
+    is_admissible(const State<Number> &U, const Coefficients<Number> &) const
     {
-      return std::isfinite(U[0]) && std::isfinite(U[1]);
+      return all_finite(U[0]) && all_finite(U[1]);
     }
 
     std::string

@@ -508,16 +508,18 @@ namespace granular_dg::elasticity
       return J;
     }
 
-    /// Empty string when U is admissible, otherwise the failed test.
+    /// Whether U is admissible (admissibility_violation() words why not);
+    /// with VectorizedArray: in every lane.
+    template <typename Number>
     bool
-    is_admissible(const State<double> &U, const Coefficients<double> &a) const
+    is_admissible(const State<Number> &U, const Coefficients<Number> &a) const
     {
       for (unsigned int c = 0; c < n_components; ++c)
-        if (!std::isfinite(U[c]))
+        if (!all_finite(U[c]))
           return false;
       // sigma' > 0 and a finite stress (the exponential law can overflow)
       const auto [s, ds] = stress_and_derivative(U[0], a);
-      return ds > 0. && std::isfinite(s);
+      return all_positive(ds) && all_finite(s);
     }
 
     std::string
