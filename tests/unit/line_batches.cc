@@ -18,14 +18,13 @@
 #include <deal.II/fe/fe_dgq.h>
 #include <deal.II/fe/fe_system.h>
 #include <deal.II/fe/mapping_q1.h>
-#include <deal.II/grid/grid_generator.h>
-#include <deal.II/grid/grid_tools.h>
-#include <deal.II/grid/tria.h>
 
 #include <granular_dg/dg/line_operator.h>
 #include <granular_dg/equations/friction_column/system.h>
 #include <granular_dg/equations/layered_elasticity/system.h>
 #include <granular_dg/equations/skeleton/system.h>
+
+#include "line_test_tools.h"
 
 #include <iostream>
 #include <random>
@@ -33,16 +32,11 @@
 
 using namespace dealii;
 using namespace granular_dg;
+using line_test::yes;
 
 namespace
 {
   constexpr unsigned int n_cells = 37;
-
-  const char *
-  yes(const bool b)
-  {
-    return b ? "yes" : "no";
-  }
 
   /// A state: component i of every cell from draw(i), modes decaying with
   /// the degree (a smooth-looking polynomial per cell).
@@ -69,16 +63,8 @@ namespace
     for (unsigned int degree = 0; degree <= 4; ++degree)
       {
         Triangulation<1> tria;
-        GridGenerator::subdivided_hyper_cube(tria, n_cells, 0., 3., true);
-        if (periodic)
-          {
-            std::vector<GridTools::PeriodicFacePair<Triangulation<1>::cell_iterator>> pairs;
-            GridTools::collect_periodic_faces(tria, 0, 1, 0, pairs);
-            tria.add_periodicity(pairs);
-          }
-        // two materials (the elasticity's layers; one for the others)
-        for (const auto &cell : tria.active_cell_iterators())
-          cell->set_material_id(Physics::n_coefficients == 3 && cell->index() % 3 == 0 ? 1 : 0);
+        // two materials for the elasticity's layers, one for the others
+        line_test::make_line(tria, n_cells, periodic, Physics::n_coefficients == 3);
         DoFHandler<1> dof_handler(tria);
         dof_handler.distribute_dofs(FESystem<1>(FE_DGQLegendre<1>(degree), nc));
         const MappingQ1<1> mapping;

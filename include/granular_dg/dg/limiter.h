@@ -1,6 +1,7 @@
 #pragma once
 
 #include <deal.II/base/tensor.h>
+#include <deal.II/base/vectorization.h>
 #include <deal.II/dofs/dof_handler.h>
 #include <deal.II/lac/la_parallel_vector.h>
 
@@ -181,6 +182,14 @@ namespace granular_dg::dg
       troubled = flags;
     }
 
+    /// Run the 1D TVB test in SIMD batches where it can (the default), or
+    /// cell by cell (to compare the two in tests).
+    void
+    set_simd_batches(const bool on)
+    {
+      simd_batches = on;
+    }
+
     LimiterType
     get_type() const
     {
@@ -225,13 +234,65 @@ namespace granular_dg::dg
     /// What limits a cell in one direction, in the variables the limiter
     /// works on: the jumps of the cell's expansion to its two faces, its
     /// slope, the neighbour differences (dp: ahead, dm: behind), the maps
-    /// back to the conserved variables and M h^2.
-    struct Direction
+    /// back to the conserved variables and M h^2 (Number: double, or a SIMD
+    /// batch of cells in the 1D screen).
+    template <typename Number>
+    struct DirectionOf
     {
-      State         jump_p, jump_m, slope, dp, dm;
-      Tensor<2, n_components> R, J;
-      double        Mh2 = 0;
+      Tensor<1, n_components, Number> jump_p, jump_m, slope, dp, dm;
+      Tensor<2, n_components, Number> R, J;
+      double                          Mh2 = 0;
     };
+    using Direction = DirectionOf<double>;
+
+    using VA = VectorizedArray<double>;
+    /// cells per SIMD batch of the 1D screen (limit_batch())
+    static constexpr unsigned int batch_width = VA::size();
+
+    /// The jumps to the faces and the slope of the modes x (direction
+    /// stride apart, components n_modes apart) into r.
+    template <unsigned int n1, typename Number>
+    inline DEAL_II_ALWAYS_INLINE void
+    modal_jumps(const Number *x, unsigned int stride, DirectionOf<Number> &r) const;
+
+    /// The jumps, the slope and the differences dp, dm of r into the
+    /// variables the limiter works on, at the cell average avg with
+    /// coefficients a in direction d (characteristic: L the left
+    /// eigenvectors, r.R the right ones; physics_variables: r.J).
+    template <typename Number>
+    inline DEAL_II_ALWAYS_INLINE void
+    to_limiter_variables(const Tensor<1, n_components, Number>        &avg,
+                         const std::array<Number, Physics::n_coefficients> &a, int d,
+                         DirectionOf<Number> &r, Tensor<1, n_components, Number> &dp,
+                         Tensor<1, n_components, Number> &dm,
+                         Tensor<2, n_components, Number> &L) const;
+
+    /// Whether the TVB test leaves the jumps of direction r unchanged in
+    /// every field (limit_batch() runs the same test lane by lane).
+    static bool
+    passes_tvb(const Direction &r);
+
+    /// The troubled cell with modes x: its modes other than the average
+    /// replaced by the limited slopes of dir (per direction).
+    template <unsigned int n1>
+    void
+    replace_modes(const std::array<Direction, dim> &dir, double *x) const;
+
+    /// Lane l of a batch's direction.
+    static void
+    extract_lane(const DirectionOf<VA> &r, unsigned int l, Direction &lane);
+
+    /// 1D, every cell examined: whether the owned cells i .. i + W - 1 can
+    /// go through the SIMD screen (limit_batch()).
+    bool
+    batch_fits(unsigned int i, unsigned int end) const;
+
+    /// limit_cell() of the owned interior cells i .. i + W - 1 of a 1D mesh
+    /// in one SIMD batch: the directions of all lanes at once, then the TVB
+    /// test and the new modes of each troubled lane.
+    template <unsigned int n1>
+    void
+    limit_batch(unsigned int i, double *u_data) const;
 
     /// apply() with n1 = degree + 1 modes per direction
     template <unsigned int n1>
@@ -295,6 +356,11 @@ namespace granular_dg::dg
 
     /// L_k(0) and L_k(1)
     std::vector<double> at_0, at_1;
+    /// 1D, per owned cell: both neighbours are cells (the SIMD screen)
+    std::vector<unsigned char> interior;
+    /// whether the physics has the SIMD versions the screen needs
+    bool batchable    = false;
+    bool simd_batches = true;
 
     TroubleIndicator indicator           = TroubleIndicator::everywhere;
     double           indicator_threshold = 0.;

@@ -4,6 +4,7 @@
 
 #include <granular_dg/base/errors.h>
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <string>
@@ -59,6 +60,26 @@ namespace granular_dg::dg
         std::declval<const typename Physics::template Coefficients<double> &>()))>>
       : std::true_type
     {};
+
+    /// Whether the Physics' eigenvectors() and limiting_jacobian() are
+    /// templates that take SIMD batches (the 1D screen of the limiter).
+    template <typename Physics, typename = void>
+    struct has_batched_eigenvectors : std::false_type
+    {};
+    template <typename Physics>
+    struct has_batched_eigenvectors<
+      Physics, std::void_t<decltype(&Physics::template eigenvectors<VectorizedArray<double>>)>>
+      : std::true_type
+    {};
+    template <typename Physics, typename = void>
+    struct has_batched_limiting_jacobian : std::false_type
+    {};
+    template <typename Physics>
+    struct has_batched_limiting_jacobian<
+      Physics,
+      std::void_t<decltype(&Physics::template limiting_jacobian<VectorizedArray<double>>)>>
+      : std::true_type
+    {};
   } // namespace internal
 
   template <int dim, typename Physics>
@@ -74,6 +95,12 @@ namespace granular_dg::dg
             "Limiter/scheme", "physics_variables",
             std::string("none, componentwise or characteristic: ") + Physics::name +
               " names no limiting variables");
+    batchable = dim == 1 && batch_width > 1 &&
+                (type == LimiterType::componentwise ||
+                 (type == LimiterType::characteristic &&
+                  internal::has_batched_eigenvectors<Physics>::value) ||
+                 (type == LimiterType::physics_variables &&
+                  internal::has_batched_limiting_jacobian<Physics>::value));
   }
 
   template <int dim, typename Physics>
@@ -142,6 +169,9 @@ namespace granular_dg::dg
           face.condition     = bc->second;
           face.center        = cells.cell(i)->face(f)->center();
         }
+    interior.assign(cells.n_owned(), 0);
+    for (unsigned int i = 0; i < cells.n_owned(); ++i)
+      interior[i] = dim == 1 && faces[2 * i].neighbor >= 0 && faces[2 * i + 1].neighbor >= 0;
   }
 
   template <int dim, typename Physics>
@@ -209,7 +239,6 @@ namespace granular_dg::dg
                                       const State &avg) const
   {
     constexpr unsigned int nc      = n_components;
-    constexpr unsigned int n_modes = dim == 1 ? n1 : n1 * n1;
     const unsigned int     stride  = d == 0 ? 1 : n1;
     const auto            &a       = coefficients[i];
     const Face            *face    = &faces[i * 2 * dim];
@@ -218,26 +247,14 @@ namespace granular_dg::dg
     const Coefficients    *a_m, *a_p;
     const bool has_m = neighbor_average(face[2 * d], 2 * d, avg, a, avg_m, a_m);
     const bool has_p = neighbor_average(face[2 * d + 1], 2 * d + 1, avg, a, avg_p, a_p);
-    for (unsigned int c = 0; c < nc; ++c)
-      {
-        const double *xc = x + c * n_modes;
-        for (unsigned int k = 1; k < n1; ++k)
-          {
-            const double mode = xc[k * stride];
-            r.jump_p[c] += mode * at_1[k];
-            r.jump_m[c] -= mode * at_0[k];
-          }
-        r.slope[c] = xc[stride] * at_1[1];
-      }
+    modal_jumps<n1>(x, stride, r);
     State dp = has_p ? avg_p - avg : State(), dm = has_m ? avg - avg_m : State();
     // the traces at the two faces (for limiter_boundary())
-    const State   face_value[2] = {avg - r.jump_m, avg + r.jump_p};
-    Tensor<2, nc> L;
+    const State face_value[2] = {avg - r.jump_m, avg + r.jump_p};
     if constexpr (internal::has_limiting_variables<Physics>::value)
       if (type == LimiterType::physics_variables)
         {
           const State &W = limiting_values[i];
-          r.J            = physics.limiting_jacobian(avg, a);
           if (has_p)
             dp = (face[2 * d + 1].neighbor >= 0 ? limiting_values[face[2 * d + 1].neighbor] :
                                                   physics.limiting_variables(avg_p, *a_p)) -
@@ -245,21 +262,9 @@ namespace granular_dg::dg
           if (has_m)
             dm = W - (face[2 * d].neighbor >= 0 ? limiting_values[face[2 * d].neighbor] :
                                                   physics.limiting_variables(avg_m, *a_m));
-          r.jump_p = r.J * r.jump_p;
-          r.jump_m = r.J * r.jump_m;
-          r.slope  = r.J * r.slope;
         }
-    if (type == LimiterType::characteristic)
-      {
-        Tensor<1, dim> n;
-        n[d] = 1.;
-        physics.eigenvectors(avg, n, a, L, r.R);
-        r.jump_p = L * r.jump_p;
-        r.jump_m = L * r.jump_m;
-        r.slope  = L * r.slope;
-        dp       = L * dp;
-        dm       = L * dm;
-      }
+    Tensor<2, nc> L;
+    to_limiter_variables(avg, a, d, r, dp, dm, L);
     // per field: whether the difference across the face is known
     std::array<bool, nc> known_p, known_m;
     known_p.fill(has_p);
@@ -289,6 +294,197 @@ namespace granular_dg::dg
         r.dm[c] = known_m[c] ? dm[c] : dp[c];
       }
     return r;
+  }
+
+  template <int dim, typename Physics>
+  template <unsigned int n1, typename Number>
+  void
+  ModalLimiter<dim, Physics>::modal_jumps(const Number *x, const unsigned int stride,
+                                          DirectionOf<Number> &r) const
+  {
+    constexpr unsigned int n_modes = dim == 1 ? n1 : n1 * n1;
+    for (unsigned int c = 0; c < n_components; ++c)
+      {
+        const Number *xc = x + c * n_modes;
+        for (unsigned int k = 1; k < n1; ++k)
+          {
+            const Number mode = xc[k * stride];
+            r.jump_p[c] += mode * at_1[k];
+            r.jump_m[c] -= mode * at_0[k];
+          }
+        r.slope[c] = xc[stride] * at_1[1];
+      }
+  }
+
+  template <int dim, typename Physics>
+  template <typename Number>
+  void
+  ModalLimiter<dim, Physics>::to_limiter_variables(
+    const Tensor<1, n_components, Number> &avg, const std::array<Number, Physics::n_coefficients> &a,
+    const int d, DirectionOf<Number> &r, Tensor<1, n_components, Number> &dp,
+    Tensor<1, n_components, Number> &dm, Tensor<2, n_components, Number> &L) const
+  {
+    // (a SIMD batch only where the physics takes one: limit_batch())
+    constexpr bool scalar = std::is_same_v<Number, double>;
+    if constexpr (internal::has_limiting_variables<Physics>::value &&
+                  (scalar || internal::has_batched_limiting_jacobian<Physics>::value))
+      if (type == LimiterType::physics_variables)
+        {
+          r.J      = physics.limiting_jacobian(avg, a);
+          r.jump_p = r.J * r.jump_p;
+          r.jump_m = r.J * r.jump_m;
+          r.slope  = r.J * r.slope;
+        }
+    if constexpr (scalar || internal::has_batched_eigenvectors<Physics>::value)
+      if (type == LimiterType::characteristic)
+      {
+        Tensor<1, dim, Number> n;
+        n[d] = 1.;
+        physics.eigenvectors(avg, n, a, L, r.R);
+        r.jump_p = L * r.jump_p;
+        r.jump_m = L * r.jump_m;
+        r.slope  = L * r.slope;
+        dp       = L * dp;
+        dm       = L * dm;
+      }
+  }
+
+  template <int dim, typename Physics>
+  bool
+  ModalLimiter<dim, Physics>::passes_tvb(const Direction &r)
+  {
+    for (unsigned int c = 0; c < n_components; ++c)
+      if (internal::minmod_tvb(r.jump_p[c], r.dp[c], r.dm[c], r.Mh2) != r.jump_p[c] ||
+          internal::minmod_tvb(r.jump_m[c], r.dp[c], r.dm[c], r.Mh2) != r.jump_m[c])
+        return false;
+    return true;
+  }
+
+  template <int dim, typename Physics>
+  void
+  ModalLimiter<dim, Physics>::extract_lane(const DirectionOf<VA> &r, const unsigned int l,
+                                           Direction &lane)
+  {
+    for (unsigned int c = 0; c < n_components; ++c)
+      {
+        lane.jump_p[c] = r.jump_p[c][l];
+        lane.jump_m[c] = r.jump_m[c][l];
+        lane.slope[c]  = r.slope[c][l];
+        lane.dp[c]     = r.dp[c][l];
+        lane.dm[c]     = r.dm[c][l];
+        for (unsigned int e = 0; e < n_components; ++e)
+          {
+            lane.R[c][e] = r.R[c][e][l];
+            lane.J[c][e] = r.J[c][e][l];
+          }
+      }
+  }
+
+  template <int dim, typename Physics>
+  bool
+  ModalLimiter<dim, Physics>::batch_fits(const unsigned int i, const unsigned int end) const
+  {
+    if (i + batch_width > end)
+      return false;
+    for (unsigned int l = 0; l < batch_width; ++l)
+      if (!interior[i + l])
+        return false;
+    return true;
+  }
+
+  template <int dim, typename Physics>
+  template <unsigned int n1>
+  void
+  ModalLimiter<dim, Physics>::limit_batch(const unsigned int i, double *u_data) const
+  {
+    constexpr unsigned int nc = n_components, W = batch_width;
+    if constexpr (dim == 1 && W > 1)
+      {
+        // lane l: cell i + l; its modes (mode 0: the average), the averages
+        // and limiting values of its neighbours, its coefficients
+        unsigned int offsets[W], offsets_m[W], offsets_p[W], values[W], values_m[W],
+          values_p[W], coefficient_offsets[W];
+        double Mh2[W];
+        for (unsigned int l = 0; l < W; ++l)
+          {
+            const unsigned int cell = i + l, m = faces[2 * cell].neighbor,
+                               p = faces[2 * cell + 1].neighbor;
+            offsets[l]             = base[cell] - base[i];
+            offsets_m[l]           = base[m];
+            offsets_p[l]           = base[p];
+            values[l]              = cell * nc;
+            values_m[l]            = m * nc;
+            values_p[l]            = p * nc;
+            coefficient_offsets[l] = l * Physics::n_coefficients;
+            const double h         = cells.extent(cell, 0);
+            Mh2[l]                 = M * h * h;
+          }
+        VA x[nc * n1];
+        vectorized_load_and_transpose(nc * n1, u_data + base[i], offsets, x);
+        Tensor<1, nc, VA> avg, avg_m, avg_p;
+        for (unsigned int c = 0; c < nc; ++c)
+          {
+            avg[c] = x[c * n1];
+            avg_m[c].gather(averages + c * n1, offsets_m);
+            avg_p[c].gather(averages + c * n1, offsets_p);
+          }
+        std::array<VA, Physics::n_coefficients> a;
+        if constexpr (Physics::n_coefficients > 0)
+          vectorized_load_and_transpose(Physics::n_coefficients, coefficients[i].data(),
+                                        coefficient_offsets, a.data());
+        DirectionOf<VA> r;
+        modal_jumps<n1>(x, 1, r);
+        Tensor<1, nc, VA> dp = avg_p - avg, dm = avg - avg_m;
+        if constexpr (internal::has_limiting_variables<Physics>::value)
+          if (type == LimiterType::physics_variables)
+            for (unsigned int c = 0; c < nc; ++c)
+              {
+                const double *W0 = &limiting_values[0][c];
+                VA            Wc, Wm, Wp;
+                Wc.gather(W0, values);
+                Wm.gather(W0, values_m);
+                Wp.gather(W0, values_p);
+                dp[c] = Wp - Wc;
+                dm[c] = Wc - Wm;
+              }
+        Tensor<2, nc, VA> L;
+        to_limiter_variables(avg, a, 0, r, dp, dm, L);
+        // the TVB test lane by lane, as limit_cell() does it
+        bool passes[W];
+        std::fill(passes, passes + W, true);
+        for (unsigned int c = 0; c < nc; ++c)
+          {
+            double jump_p[W], jump_m[W], dp_c[W], dm_c[W];
+            r.jump_p[c].store(jump_p);
+            r.jump_m[c].store(jump_m);
+            dp[c].store(dp_c);
+            dm[c].store(dm_c);
+            for (unsigned int l = 0; l < W; ++l)
+              passes[l] &= internal::minmod_tvb(jump_p[l], dp_c[l], dm_c[l], Mh2[l]) == jump_p[l] &&
+                           internal::minmod_tvb(jump_m[l], dp_c[l], dm_c[l], Mh2[l]) == jump_m[l];
+          }
+        // a troubled lane is limited with what the batch computed for it
+        r.dp = dp;
+        r.dm = dm;
+        for (unsigned int l = 0; l < W; ++l)
+          {
+            const unsigned int cell = i + l;
+            ++flagged;
+            troubled[cell] = !passes[l];
+            if (passes[l])
+              continue;
+            std::array<Direction, dim> dir;
+            extract_lane(r, l, dir[0]);
+            dir[0].Mh2 = Mh2[l];
+            replace_modes<n1>(dir, u_data + base[cell]);
+          }
+      }
+    else
+      {
+        (void)i;
+        (void)u_data;
+        Assert(false, ExcInternalError());
+      }
   }
 
   template <int dim, typename Physics>
@@ -394,15 +590,24 @@ namespace granular_dg::dg
     bool                       is_troubled = false;
     for (int d = 0; d < dim; ++d)
       {
-        dir[d]               = analyse<n1>(i, d, x, avg);
-        const Direction &r   = dir[d];
-        for (unsigned int c = 0; c < nc; ++c)
-          if (internal::minmod_tvb(r.jump_p[c], r.dp[c], r.dm[c], r.Mh2) != r.jump_p[c] ||
-              internal::minmod_tvb(r.jump_m[c], r.dp[c], r.dm[c], r.Mh2) != r.jump_m[c])
-            is_troubled = true;
+        dir[d] = analyse<n1>(i, d, x, avg);
+        if (!passes_tvb(dir[d]))
+          is_troubled = true;
       }
     if (!is_troubled)
       return false;
+    replace_modes<n1>(dir, x);
+    return true;
+  }
+
+  template <int dim, typename Physics>
+  template <unsigned int n1>
+  void
+  ModalLimiter<dim, Physics>::replace_modes(const std::array<Direction, dim> &dir,
+                                            double *x) const
+  {
+    constexpr unsigned int nc      = n_components;
+    constexpr unsigned int n_modes = dim == 1 ? n1 : n1 * n1;
     for (int d = 0; d < dim; ++d)
       {
         const Direction &r = dir[d];
@@ -422,7 +627,6 @@ namespace granular_dg::dg
       for (unsigned int m = 1; m < n_modes; ++m)
         if (!(m == 1 || (dim == 2 && m == n1)))
           x[c * n_modes + m] = 0.;
-    return true;
   }
 
   template <int dim, typename Physics>
@@ -467,8 +671,24 @@ namespace granular_dg::dg
             kxrcf_flags[i] = kxrcf_indicated<n1>(i);
         });
       }
+    // in 1D with every cell examined, the TVB test runs on SIMD batches of
+    // interior cells; a cell it finds troubled is limited by limit_cell()
+    const bool batches = batchable && simd_batches && indicator == TroubleIndicator::everywhere;
     const auto limit_range = [&](const unsigned int first, const unsigned int end) {
-      for (unsigned int i = first; i < end; ++i)
+      unsigned int i = first;
+      if (batches)
+        while (i + batch_width <= end)
+          if (batch_fits(i, end))
+            {
+              limit_batch<n1>(i, u_data);
+              i += batch_width;
+            }
+          else
+            {
+              troubled[i] = limit_cell<n1>(i, u_data + base[i]);
+              ++i;
+            }
+      for (; i < end; ++i)
         troubled[i] = limit_cell<n1>(i, u_data + base[i]);
     };
     for_active_ranges(active, cells.n_owned(), limit_range);

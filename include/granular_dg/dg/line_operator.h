@@ -310,7 +310,7 @@ namespace granular_dg::dg
     /// The modes of the cells c .. c + W - 1 (lane l: cell c + l) and
     /// their coefficients, for the SIMD batches.
     template <unsigned int nm>
-    void
+    DEAL_II_ALWAYS_INLINE void
     load_batch(const double *src, const unsigned int c, VA (&u)[n_components * nm],
                Coefficients<VA> &a) const
     {
@@ -329,7 +329,7 @@ namespace granular_dg::dg
 
     /// The state at point q of the cells with modes u (double or a batch).
     template <unsigned int nm, typename Number>
-    State<Number>
+    DEAL_II_ALWAYS_INLINE State<Number>
     point_state(const Number *u, const unsigned int q) const
     {
       State<Number> U;
@@ -593,17 +593,10 @@ namespace granular_dg::dg
           // volume: int F(u_h) phi_k' dx + int S(u_h) phi_k dx
           for (unsigned int q = 0; q < nq; ++q)
             {
-              const auto   &B = basis[q];
-              const auto   &D = derivative[q];
-              State<double> U;
-              for (unsigned int i = 0; i < nc; ++i)
-                {
-                  double s = 0;
-                  for (unsigned int k = 0; k < nm; ++k)
-                    s += u[i * nm + k] * B[k];
-                  U[i] = s;
-                }
-              const auto F = phys.flux(U, a);
+              const auto         &B = basis[q];
+              const auto         &D = derivative[q];
+              const State<double> U = point_state<nm>(u, q);
+              const auto          F = phys.flux(U, a);
               for (unsigned int i = 0; i < nc; ++i)
                 {
                   const double wf = weights[q] * F[i][0];
@@ -673,41 +666,21 @@ namespace granular_dg::dg
                 State<double> &F_left) const
     {
       constexpr unsigned int nc = n_components, nq = nm + 1, dpc = nc * nm, W = batch_width;
-      unsigned int           offsets[W], coefficient_offsets[W];
-      for (unsigned int l = 0; l < W; ++l)
-        {
-          offsets[l]             = l * dpc;
-          coefficient_offsets[l] = l * n_coefficients;
-        }
       // the modes of the cells c + l (u) and c + 1 + l (v), their coefficients
-      VA u[dpc], v[dpc];
-      vectorized_load_and_transpose(dpc, src + c * dpc, offsets, u);
-      vectorized_load_and_transpose(dpc, src + (c + 1) * dpc, offsets, v);
+      VA               u[dpc], v[dpc];
       Coefficients<VA> a, a_next;
-      if constexpr (n_coefficients > 0)
-        {
-          vectorized_load_and_transpose(n_coefficients, coefficients[c].data(),
-                                        coefficient_offsets, a.data());
-          vectorized_load_and_transpose(n_coefficients, coefficients[c + 1].data(),
-                                        coefficient_offsets, a_next.data());
-        }
+      load_batch<nm>(src, c, u, a);
+      load_batch<nm>(src, c + 1, v, a_next);
       VA h_c;
       h_c.load(&h[c]);
 
       VA res[nc][nm] = {};
       for (unsigned int q = 0; q < nq; ++q)
         {
-          const auto &B = basis[q];
-          const auto &D = derivative[q];
-          State<VA>   U;
-          for (unsigned int i = 0; i < nc; ++i)
-            {
-              VA s = 0.;
-              for (unsigned int k = 0; k < nm; ++k)
-                s += u[i * nm + k] * B[k];
-              U[i] = s;
-            }
-          const auto F = phys.flux(U, a);
+          const auto     &B = basis[q];
+          const auto     &D = derivative[q];
+          const State<VA> U = point_state<nm>(u, q);
+          const auto      F = phys.flux(U, a);
           for (unsigned int i = 0; i < nc; ++i)
             {
               const VA wf = weights[q] * F[i][0];
@@ -759,6 +732,9 @@ namespace granular_dg::dg
       for (unsigned int i = 0; i < nc; ++i)
         for (unsigned int k = 0; k < nm; ++k)
           rate[i * nm + k] = (res[i][k] - F_right[i] * at_1[k] + F_left_va[i] * at_0[k]) * inv_h;
+      unsigned int offsets[W];
+      for (unsigned int l = 0; l < W; ++l)
+        offsets[l] = l * dpc;
       double rates[W * dpc];
       vectorized_transpose_and_store(false, dpc, rate, offsets, rates);
       for (unsigned int j = 0; j < W * dpc; ++j)

@@ -65,10 +65,11 @@ namespace granular_dg::column
           }
     }
 
-    /// R_l of a cell from its strain modes u[k * stride].
-    template <unsigned int nm>
+    /// R_l of a cell from its strain modes u[k * stride] (Number: double,
+    /// or a SIMD batch of cells).
+    template <unsigned int nm, typename Number>
     void
-    load_modes(const double *u, const std::size_t stride, double *R) const
+    load_modes(const Number *u, const std::size_t stride, Number *R) const
     {
       for (unsigned int k = 0; k < nm; ++k)
         R[k] = 0.;
@@ -76,10 +77,10 @@ namespace granular_dg::column
       for (unsigned int i = 0; i < nm + 1; ++i)
         {
           const double *phi = &basis[i * max_modes];
-          double        ui  = 0;
+          Number        ui  = 0.;
           for (unsigned int k = 0; k < nm; ++k)
             ui += u[k * stride] * phi[k];
-          const double ws = weights[i] * system.stress(ui);
+          const Number ws = weights[i] * system.stress(ui);
           for (unsigned int k = 0; k < nm; ++k)
             R[k] += ws * phi[k];
         }
@@ -146,41 +147,75 @@ namespace granular_dg::column
       return n_modes > 1 ? layout.index(0, 0, 1) - layout.index(0, 0, 0) : 1;
     }
 
+    /// The cells [first, end): R_l in SIMD batches of W cells (the
+    /// stress at the Gauss points is most of the work), then cell by cell
+    /// the projection itself.
     template <unsigned int nm>
     void
     apply_impl(LinearAlgebra::distributed::Vector<double> &U, const double w,
                const unsigned int first, const unsigned int end)
     {
-      const std::size_t stride = mode_stride();
-      double           *data   = U.begin();
-      double            R[nm];
-      for (unsigned int c = first; c < end; ++c)
+      using VA                   = VectorizedArray<double>;
+      constexpr unsigned int W   = VA::size();
+      const std::size_t stride   = mode_stride();
+      double           *data     = U.begin();
+      unsigned int      c        = first;
+      if constexpr (W > 1)
+        for (; c + W <= end; c += W)
+          {
+            unsigned int offsets[W];
+            for (unsigned int l = 0; l < W; ++l)
+              offsets[l] = layout.index(c + l, 0, 0);
+            VA u[nm], R[nm];
+            for (unsigned int k = 0; k < nm; ++k)
+              u[k].gather(data + k * stride, offsets);
+            load_modes<nm>(u, 1, R);
+            double R_lanes[nm][W];
+            for (unsigned int k = 0; k < nm; ++k)
+              R[k].store(R_lanes[k]);
+            for (unsigned int l = 0; l < W; ++l)
+              {
+                double R_cell[nm];
+                for (unsigned int k = 0; k < nm; ++k)
+                  R_cell[k] = R_lanes[k][l];
+                project<nm>(c + l, data + layout.index(c + l, 1, 0), stride, w, R_cell);
+              }
+          }
+      for (; c < end; ++c)
         {
-          const double *u = data + layout.index(c, 0, 0);
-          double       *v = data + layout.index(c, 1, 0);
-          load_modes<nm>(u, stride, R);
-          if (!(R[0] > 0.))
-            {
-              state[c]      = CellState::unloaded;
-              multiplier[c] = v[0] > 0 ? 1. : (v[0] < 0 ? -1. : 0.);
-              continue;
-            }
-          const double s = v[0] / (w * R[0]);
-          if (std::abs(s) <= 1.)
-            {
-              state[c]      = CellState::stuck;
-              multiplier[c] = s;
-              for (unsigned int k = 0; k < nm; ++k)
-                v[k * stride] = 0.;
-            }
-          else
-            {
-              const double sgn = s > 0 ? 1. : -1.;
-              state[c]         = CellState::sliding;
-              multiplier[c]    = sgn;
-              for (unsigned int k = 0; k < nm; ++k)
-                v[k * stride] -= w * sgn * R[k];
-            }
+          double R[nm];
+          load_modes<nm>(data + layout.index(c, 0, 0), stride, R);
+          project<nm>(c, data + layout.index(c, 1, 0), stride, w, R);
+        }
+    }
+
+    /// The projection of cell c with velocity modes v[k * stride] and R_l.
+    template <unsigned int nm>
+    void
+    project(const unsigned int c, double *v, const std::size_t stride, const double w,
+            const double *R)
+    {
+      if (!(R[0] > 0.))
+        {
+          state[c]      = CellState::unloaded;
+          multiplier[c] = v[0] > 0 ? 1. : (v[0] < 0 ? -1. : 0.);
+          return;
+        }
+      const double s = v[0] / (w * R[0]);
+      if (std::abs(s) <= 1.)
+        {
+          state[c]      = CellState::stuck;
+          multiplier[c] = s;
+          for (unsigned int k = 0; k < nm; ++k)
+            v[k * stride] = 0.;
+        }
+      else
+        {
+          const double sgn = s > 0 ? 1. : -1.;
+          state[c]         = CellState::sliding;
+          multiplier[c]    = sgn;
+          for (unsigned int k = 0; k < nm; ++k)
+            v[k * stride] -= w * sgn * R[k];
         }
     }
 

@@ -267,12 +267,14 @@ namespace granular_dg::column
 
     /// Eigenvectors at U in direction n (order -c, +c); the sound speed is
     /// floored so that the decomposition stays defined at rest (c = 0).
+    template <typename Number>
     void
-    eigenvectors(const State<double> &U, const Tensor<1, 1> &n, const Coefficients<double> &,
-                 Tensor<2, 2> &L, Tensor<2, 2> &R) const
+    eigenvectors(const State<Number> &U, const Tensor<1, 1, Number> &n,
+                 const Coefficients<Number> &, Tensor<2, 2, Number> &L,
+                 Tensor<2, 2, Number> &R) const
     {
-      const double c  = std::max(sound_speed(U[0]), 1e-6);
-      const double cn = c * n[0];
+      const Number c  = std::max(sound_speed(U[0]), Number(1e-6));
+      const Number cn = c * n[0];
       // A n = [[0, -n], [sigma' n, 0]], eigenvalues -+c: r = (1, +-c n)
       R[0][0] = R[0][1] = 1.;
       R[1][0]           = cn;

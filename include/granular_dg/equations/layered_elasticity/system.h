@@ -455,16 +455,17 @@ namespace granular_dg::elasticity
 
     /// Left (rows of L) and right (columns of R) eigenvectors of the flux
     /// Jacobian in direction n at U; L R = I. Order: -c, 0.., +c.
+    template <typename Number>
     void
-    eigenvectors(const State<double>        &U,
-                 const Tensor<1, dim>       &n,
-                 const Coefficients<double> &a,
-                 Tensor<2, n_components>    &L,
-                 Tensor<2, n_components>    &R) const
+    eigenvectors(const State<Number>               &U,
+                 const Tensor<1, dim, Number>      &n,
+                 const Coefficients<Number>        &a,
+                 Tensor<2, n_components, Number>   &L,
+                 Tensor<2, n_components, Number>   &R) const
     {
-      const double Z = a[density] * max_wave_speed(U, a);
-      L = 0;
-      R = 0;
+      const Number Z = a[density] * max_wave_speed(U, a);
+      L = Tensor<2, n_components, Number>();
+      R = Tensor<2, n_components, Number>();
       // lambda = -c: r = (1, Z n), l = (1/2, n/(2Z))
       // lambda = +c: r = (1, -Z n), l = (1/2, -n/(2Z))
       const unsigned int last = n_components - 1;
@@ -498,10 +499,11 @@ namespace granular_dg::elasticity
     }
 
     /// dW/dU = diag(sigma'(eps), 1/rho, ..).
-    Tensor<2, n_components>
-    limiting_jacobian(const State<double> &U, const Coefficients<double> &a) const
+    template <typename Number>
+    Tensor<2, n_components, Number>
+    limiting_jacobian(const State<Number> &U, const Coefficients<Number> &a) const
     {
-      Tensor<2, n_components> J;
+      Tensor<2, n_components, Number> J;
       J[0][0] = stress_derivative(U[0], a);
       for (int d = 0; d < dim; ++d)
         J[1 + d][1 + d] = 1. / a[density];
