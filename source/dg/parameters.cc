@@ -170,7 +170,8 @@ namespace granular_dg::dg
                       "update on the p + 1 subcells of each cell, by a factor alpha from "
                       "the modal energy of the indicator variable (Hennemann et al. 2021; "
                       "0 in smooth cells); conservative. Independent of Limiter/scheme (both "
-                      "may act). Line engine (serial 1D runs); doc/engine.md.");
+                      "may act). Line engine (serial 1D runs and the edges of networks); "
+                      "doc/engine.md.");
     prm.declare_entry("blending maximum", "0.5", Patterns::Double(0, 1),
                       "The largest blending factor alpha_max, in (0, 1] (1: pure "
                       "finite volumes in the cells the indicator flags most).");

@@ -259,3 +259,11 @@ granular_dg_test(network/mass_7_5_blending PRM ../prm/network_example_7_5.prm
        --set "Time stepping/CFL number=0.18" --set Limiter/scheme=none
        --set "Limiter/subcell blending=true"
   COMPARE summary.json:diagnostics/mass_balance_residual_max,diagnostics/mass_step_residual_max NUMDIFF -a 1e-13 -r 0)
+# The same run's timeseries.csv has the column blended_cells (cells of all
+# edges with a blending factor > 0): none at t = 0, the shock's cells
+# afterwards (issue 21).
+granular_dg_test(network/blended_cells_7_5 PRM ../prm/network_example_7_5.prm
+  ARGS --set "Output/write vtu=false" --set Discretization/degree=2
+       --set "Time stepping/CFL number=0.18" --set Limiter/scheme=none
+       --set "Limiter/subcell blending=true"
+  COMPARE timeseries.csv:time,blended_cells NUMDIFF -a 0 -r 0)

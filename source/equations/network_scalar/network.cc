@@ -968,19 +968,24 @@ namespace granular_dg::network
       header.emplace_back("l1_error");
     if (exact && vertices)
       header.emplace_back("l1_error_vertex");
+    if (disc.blending_max > 0)
+      header.emplace_back("blended_cells");
     return header;
   }
 
   std::string
   NetworkProblem::timeseries_comment() const
   {
+    const std::string blended =
+      disc.blending_max > 0 ? "; blended_cells: cells of all edges with a blending factor > 0" : "";
     if (net.is_star())
       return "mass_balance_residual = |mass - mass(0) - boundary_inflow| / ||u(0)||_L1; "
-             "rh_residual = sum_in F - sum_out F at the vertex";
+             "rh_residual = sum_in F - sum_out F at the vertex" +
+             blended;
     return "mass_balance_residual = |mass - mass(0) - boundary_inflow| / ||u(0)||_L1; "
            "vertex_value, vertex_exact: at " +
            (junctions.empty() ? std::string("no vertex") : net.vertices[0].label) +
-           "; rh_residual = sum_in F - sum_out F at the vertex where it is largest";
+           "; rh_residual = sum_in F - sum_out F at the vertex where it is largest" + blended;
   }
 
   std::vector<double>
@@ -1001,6 +1006,15 @@ namespace granular_dg::network
         row.push_back(e.l1);
         if (vertices)
           row.push_back(e.l1_vertex);
+      }
+    if (disc.blending_max > 0)
+      {
+        // cells of all edges whose last stage blended in finite volumes
+        unsigned int blended = 0;
+        for (const auto &ed : edge)
+          for (const double alpha : ed->op->blending_factors())
+            blended += alpha > 0;
+        row.push_back(blended);
       }
     return row;
   }
