@@ -235,7 +235,7 @@ namespace granular_dg::dg
     /// works on: the jumps of the cell's expansion to its two faces, its
     /// slope, the neighbour differences (dp: ahead, dm: behind), the maps
     /// back to the conserved variables and M h^2 (Number: double, or a SIMD
-    /// batch of cells in the 1D screen).
+    /// batch of cells in the 1D limiter).
     template <typename Number>
     struct DirectionOf
     {
@@ -246,7 +246,7 @@ namespace granular_dg::dg
     using Direction = DirectionOf<double>;
 
     using VA = VectorizedArray<double>;
-    /// cells per SIMD batch of the 1D screen (limit_batch())
+    /// cells per SIMD batch of the 1D limiter (limit_batch())
     static constexpr unsigned int batch_width = VA::size();
 
     /// The jumps to the faces and the slope of the modes x (direction
@@ -283,7 +283,7 @@ namespace granular_dg::dg
     extract_lane(const DirectionOf<VA> &r, unsigned int l, Direction &lane);
 
     /// 1D, every cell examined: whether the owned cells i .. i + W - 1 can
-    /// go through the SIMD screen (limit_batch()).
+    /// go through limit_batch() together.
     bool
     batch_fits(unsigned int i, unsigned int end) const;
 
@@ -356,9 +356,9 @@ namespace granular_dg::dg
 
     /// L_k(0) and L_k(1)
     std::vector<double> at_0, at_1;
-    /// 1D, per owned cell: both neighbours are cells (the SIMD screen)
+    /// 1D, per owned cell: both neighbours are cells (limit_batch())
     std::vector<unsigned char> interior;
-    /// whether the physics has the SIMD versions the screen needs
+    /// whether the physics has the SIMD versions limit_batch() needs
     bool batchable    = false;
     bool simd_batches = true;
 

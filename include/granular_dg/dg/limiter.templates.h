@@ -62,7 +62,7 @@ namespace granular_dg::dg
     {};
 
     /// Whether the Physics' eigenvectors() and limiting_jacobian() are
-    /// templates that take SIMD batches (the 1D screen of the limiter).
+    /// templates that take SIMD batches (the limiter's 1D batches).
     template <typename Physics, typename = void>
     struct has_batched_eigenvectors : std::false_type
     {};
@@ -409,7 +409,7 @@ namespace granular_dg::dg
           {
             const unsigned int cell = i + l, m = faces[2 * cell].neighbor,
                                p = faces[2 * cell + 1].neighbor;
-            offsets[l]             = base[cell] - base[i];
+            offsets[l]             = base[cell];
             offsets_m[l]           = base[m];
             offsets_p[l]           = base[p];
             values[l]              = cell * nc;
@@ -420,7 +420,7 @@ namespace granular_dg::dg
             Mh2[l]                 = M * h * h;
           }
         VA x[nc * n1];
-        vectorized_load_and_transpose(nc * n1, u_data + base[i], offsets, x);
+        vectorized_load_and_transpose(nc * n1, u_data, offsets, x);
         Tensor<1, nc, VA> avg, avg_m, avg_p;
         for (unsigned int c = 0; c < nc; ++c)
           {
