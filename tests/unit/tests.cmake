@@ -37,7 +37,8 @@ granular_dg_unit_test(unit/subcell_blending NUMDIFF -a 0 -r 0)
 granular_dg_unit_test(unit/line_batches NUMDIFF -a 0 -r 0)
 # The limiter's SIMD batches (issue 18): in 1D the analysis and TVB test of
 # every cell run on batches of interior cells; the flags and the limited
-# states equal those of the cell-by-cell limiter, bit for bit (elasticity flux_variables and characteristic with two materials,
-# the column characteristic, periodic advection componentwise; degrees 1-4,
-# smooth and rough cells, so both outcomes occur). Fails itself otherwise.
+# states equal those of the cell-by-cell limiter, bit for bit (elasticity
+# flux_variables and characteristic with two materials, the column
+# characteristic, periodic advection componentwise; degrees 1-4, smooth and
+# rough cells, so both outcomes occur). Fails itself otherwise.
 granular_dg_unit_test(unit/limiter_batches NUMDIFF -a 0 -r 0)

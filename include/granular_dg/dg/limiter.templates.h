@@ -34,6 +34,13 @@ namespace granular_dg::dg
       return minmod(a, b, c);
     }
 
+    /// Whether the TVB test keeps the jump a against the differences b, c.
+    inline bool
+    tvb_keeps(const double a, const double b, const double c, const double Mh2)
+    {
+      return minmod_tvb(a, b, c, Mh2) == a;
+    }
+
     /// Whether the Physics has the optional limiter_boundary() (limiter.h).
     template <typename Physics, int dim, typename = void>
     struct has_limiter_boundary : std::false_type
@@ -354,8 +361,8 @@ namespace granular_dg::dg
   ModalLimiter<dim, Physics>::passes_tvb(const Direction &r)
   {
     for (unsigned int c = 0; c < n_components; ++c)
-      if (internal::minmod_tvb(r.jump_p[c], r.dp[c], r.dm[c], r.Mh2) != r.jump_p[c] ||
-          internal::minmod_tvb(r.jump_m[c], r.dp[c], r.dm[c], r.Mh2) != r.jump_m[c])
+      if (!internal::tvb_keeps(r.jump_p[c], r.dp[c], r.dm[c], r.Mh2) ||
+          !internal::tvb_keeps(r.jump_m[c], r.dp[c], r.dm[c], r.Mh2))
         return false;
     return true;
   }
@@ -460,8 +467,8 @@ namespace granular_dg::dg
             dp[c].store(dp_c);
             dm[c].store(dm_c);
             for (unsigned int l = 0; l < W; ++l)
-              passes[l] &= internal::minmod_tvb(jump_p[l], dp_c[l], dm_c[l], Mh2[l]) == jump_p[l] &&
-                           internal::minmod_tvb(jump_m[l], dp_c[l], dm_c[l], Mh2[l]) == jump_m[l];
+              passes[l] &= internal::tvb_keeps(jump_p[l], dp_c[l], dm_c[l], Mh2[l]) &&
+                           internal::tvb_keeps(jump_m[l], dp_c[l], dm_c[l], Mh2[l]);
           }
         // a troubled lane is limited with what the batch computed for it
         r.dp = dp;

@@ -9,6 +9,7 @@
 #include <granular_dg/dg/active_cells.h>
 #include <granular_dg/dg/time_integrator.h>
 
+#include <algorithm>
 #include <string>
 #include <vector>
 
@@ -149,6 +150,15 @@ namespace granular_dg::dg
     {
       static const std::vector<double> none;
       return none;
+    }
+
+    /// The number of owned cells with a blending factor > 0 in the last
+    /// apply() (the timeseries' blended_cells).
+    unsigned int
+    n_blended_cells() const
+    {
+      const auto &alpha = blending_factors();
+      return std::count_if(alpha.begin(), alpha.end(), [](const double a) { return a > 0; });
     }
 
   private:

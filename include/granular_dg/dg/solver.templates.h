@@ -436,10 +436,7 @@ namespace granular_dg::dg
     if (method.indicator != TroubleIndicator::everywhere)
       row.push_back(Utilities::MPI::sum(limiter.n_flagged(), solution.get_mpi_communicator()));
     if (method.blending_max > 0)
-      {
-        const auto &alpha = op->blending_factors();
-        row.push_back(std::count_if(alpha.begin(), alpha.end(), [](const double a) { return a > 0; }));
-      }
+      row.push_back(op->n_blended_cells());
     if (scene.exact)
       {
         const auto e  = errors(t);

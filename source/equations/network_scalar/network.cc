@@ -1012,8 +1012,7 @@ namespace granular_dg::network
         // cells of all edges whose last stage blended in finite volumes
         unsigned int blended = 0;
         for (const auto &ed : edge)
-          for (const double alpha : ed->op->blending_factors())
-            blended += alpha > 0;
+          blended += ed->op->n_blended_cells();
         row.push_back(blended);
       }
     return row;
