@@ -58,6 +58,9 @@ main()
   std::printf("max |v_t - u_z - u| = %.1e\n", momentum);
 
   std::printf("first stop at the wall t_s(0) = %.10f\n", s.first_stop_time());
+  // the value tests/column/point_error.py compares the shipped column with
+  std::printf("u(3, 4) = %.12f (still sliding: t_s(3) = %.4f)\n", s.strain(3., 4.),
+              s.stop_time(3.));
   // off-node point: the interpolation against the direct root of v(z, t) = 0
   const double z = 1.2345, ts = s.stop_time(z);
   std::printf("v(z, t_s(z)) at z = %g (interpolated t_s) = %.1e\n", z, s.sliding_velocity(z, ts));

@@ -24,6 +24,18 @@ endforeach()
 granular_dg_test(column/m1_front PRM column/m1_base.prm
   COMPARE timeseries.csv:time,front_strain,front_velocity NUMDIFF -r 0.02 -a 1e-12)
 
+# The shipped shock capturing of prm/column_m1.prm (the characteristic limiter
+# on the cells the modal-energy indicator flags, threshold 0.2; issue 21) at
+# the paper's dx = 0.025 on (0, 5), t = 4: the strain error at (z, t) = (3, 4)
+# against the closed form must be at most half of the 5.09e-4 that the limiter
+# in every cell leaves (.output 1.2725e-4 with -a 1.2725e-4: passes iff the
+# error is in [0, 2.545e-4]; it is 1.77e-4), and v = 0 exactly in every stuck
+# cell (the flag 1; a 0 fails the tolerance).
+granular_dg_test(column/point_error EXE ${TEST_PYTHON}
+  ARGS ${CMAKE_CURRENT_SOURCE_DIR}/column/point_error.py $<TARGET_FILE:granular_dg>
+       ${CMAKE_CURRENT_SOURCE_DIR}/../prm/column_m1.prm
+  COMPARE stdout KEEP_OUTPUT NUMDIFF -a 1.2725e-4 -r 0)
+
 # Stuck material (t = 8, after the stopping front has frozen z < 6.92): the
 # velocity is exactly 0 in every stuck cell after every stage (also after the
 # characteristic limiter), the friction multiplier stays in [-1, 1], the
