@@ -10,7 +10,10 @@ granular_dg_unit_test(unit/layered_interface NUMDIFF -a 1e-7 -r 0)
 granular_dg_unit_test(unit/rk_stability_limits NUMDIFF -a 2e-4 -r 0)
 # The SIMD exponential (base/vectorized_math.h, used by the exponential stress
 # law) within 2 ulp of std::exp over the finite range, lane- and
-# width-independent, special values right; it fails itself otherwise.
+# width-independent, special values right; and the lane tests all_finite,
+# all_positive of the admissibility checks equal the lane-by-lane std::isfinite
+# and > 0 for NaN, +-inf, +-0, subnormals in any lane (native width, 4, 1); it
+# fails itself otherwise.
 granular_dg_unit_test(unit/vectorized_exp NUMDIFF -r 1e-15)
 # The byte transport of checkpoints (gather_bytes, broadcast_bytes) in chunks
 # of 7 bytes on 3 ranks: every byte arrives (an empty part too); fails itself

@@ -4,6 +4,10 @@
 // native width and at width 1 (the same value in every lane and width), and
 // the special values (0, +-inf, NaN, overflow, subnormal results). The test
 // fails itself (exit 1) if an error exceeds 2 ulp or a special value is wrong.
+// Also the lane tests all_finite and all_positive of the admissibility
+// checks (one SIMD compare at the native width): a special value (NaN, +-inf,
+// +-0, subnormal, DBL_MAX, ...) in one lane and 1 in the others, in every
+// lane, at the native width, 4 and 1, against std::isfinite and > 0.
 #include <deal.II/base/vectorization.h>
 
 #include <granular_dg/base/vectorized_math.h>
@@ -50,6 +54,26 @@ namespace
       }
     return worst;
   }
+  /// whether all_finite and all_positive agree with the lane-by-lane test
+  /// for every special value in every lane
+  template <std::size_t width>
+  bool
+  lane_tests_agree()
+  {
+    const double inf     = std::numeric_limits<double>::infinity();
+    const double values[] = {std::nan(""), inf, -inf, 0., -0., -1., 1., 4.9e-324, -4.9e-324,
+                             std::numeric_limits<double>::max(), -std::numeric_limits<double>::max()};
+    bool agree = true;
+    for (const double s : values)
+      for (unsigned int lane = 0; lane < width; ++lane)
+        {
+          VectorizedArray<double, width> x(1.);
+          x[lane] = s;
+          agree &= granular_dg::all_finite(x) == bool(std::isfinite(s));
+          agree &= granular_dg::all_positive(x) == (s > 0.);
+        }
+    return agree;
+  }
 } // namespace
 
 int
@@ -78,5 +102,9 @@ main()
   const double nan = granular_dg::exp(VectorizedArray<double, W>(std::nan("")))[0];
   special          = special && std::isnan(nan);
   std::printf("exp(NaN) is NaN: %s\n", std::isnan(nan) ? "yes" : "NO");
-  return wide <= 2. && unit <= 2. && same && special ? 0 : 1;
+
+  const bool lanes = lane_tests_agree<W>() && lane_tests_agree<4>() && lane_tests_agree<1>();
+  std::printf("all_finite, all_positive agree with std::isfinite, > 0 in every lane: %s\n",
+              lanes ? "yes" : "NO");
+  return wide <= 2. && unit <= 2. && same && special && lanes ? 0 : 1;
 }

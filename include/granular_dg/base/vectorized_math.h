@@ -21,6 +21,10 @@
 #include <cmath>
 #include <cstdint>
 #include <cstring>
+#include <type_traits>
+#if defined(__AVX__)
+#  include <immintrin.h>
+#endif
 
 namespace granular_dg
 {
@@ -83,14 +87,46 @@ namespace granular_dg
     return std::isfinite(x);
   }
 
+  namespace internal
+  {
+    /// the ordered comparisons of _mm*_cmp_pd (_CMP_EQ_OQ, _CMP_GT_OQ)
+    constexpr int equal_to = 0x00, greater_than = 0x1e;
+#if defined(__AVX__)
+    static_assert(equal_to == _CMP_EQ_OQ && greater_than == _CMP_GT_OQ);
+#endif
+
+    /// Whether x > 0 (ordered: false for NaN) holds in every lane when
+    /// compare_zero is the ordered "greater than", or x == 0 with the ordered
+    /// "equal": one SIMD compare and a test of its mask where VectorizedArray
+    /// holds a native register (AVX-512 or AVX), a loop over the lanes
+    /// otherwise. (A loop of scalar compares per lane made the elasticity's
+    /// admissibility scan 13 % of a layered 1D step.)
+    template <int compare_zero, std::size_t width>
+    DEAL_II_ALWAYS_INLINE inline bool
+    all_lanes_compare_zero(const dealii::VectorizedArray<double, width> &x)
+    {
+#if defined(__AVX512F__)
+      if constexpr (std::is_same_v<std::decay_t<decltype(x.data)>, __m512d>)
+        return _mm512_cmp_pd_mask(x.data, _mm512_setzero_pd(), compare_zero) == 0xFF;
+#endif
+#if defined(__AVX__)
+      if constexpr (std::is_same_v<std::decay_t<decltype(x.data)>, __m256d>)
+        return _mm256_movemask_pd(_mm256_cmp_pd(x.data, _mm256_setzero_pd(), compare_zero)) ==
+               0xF;
+#endif
+      bool ok = true;
+      for (unsigned int v = 0; v < width; ++v)
+        ok &= compare_zero == greater_than ? x[v] > 0. : x[v] == 0.;
+      return ok;
+    }
+  } // namespace internal
+
   template <std::size_t width>
   bool
   all_finite(const dealii::VectorizedArray<double, width> &x)
   {
-    bool ok = true;
-    for (unsigned int v = 0; v < width; ++v)
-      ok &= std::isfinite(x[v]);
-    return ok;
+    // x - x is 0 for finite x, NaN for an infinite or NaN x
+    return internal::all_lanes_compare_zero<internal::equal_to>(x - x);
   }
 
   /// ... and whether x > 0 in every lane (false for NaN).
@@ -104,9 +140,6 @@ namespace granular_dg
   bool
   all_positive(const dealii::VectorizedArray<double, width> &x)
   {
-    bool ok = true;
-    for (unsigned int v = 0; v < width; ++v)
-      ok &= x[v] > 0.;
-    return ok;
+    return internal::all_lanes_compare_zero<internal::greater_than>(x);
   }
 } // namespace granular_dg
