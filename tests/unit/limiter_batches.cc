@@ -10,12 +10,17 @@
 // cells, half of them smooth and half rough, so that both outcomes occur:
 //  - the troubled flags with batches equal those cell by cell;
 //  - the limited states are bitwise equal.
+// And the batch's TVB test (internal::tvb_keeps_lanes) against the scalar one
+// (tvb_keeps) on every combination of special values of the jump and the two
+// differences (NaN, +-inf, +-0, equal magnitudes, both signs) and M h^2 in
+// {0, 1}, packed into lanes.
 // Prints the number of troubled cells and yes/no; compared exactly.
 #include <deal.II/dofs/dof_handler.h>
 #include <deal.II/fe/fe_dgq.h>
 #include <deal.II/fe/fe_system.h>
 
 #include <granular_dg/dg/limiter.h>
+#include <granular_dg/dg/limiter.templates.h>
 #include <granular_dg/dg/operator.h>
 #include <granular_dg/equations/friction_column/system.h>
 #include <granular_dg/equations/layered_elasticity/system.h>
@@ -24,6 +29,7 @@
 #include "line_test_tools.h"
 
 #include <iostream>
+#include <limits>
 #include <random>
 #include <string>
 
@@ -97,6 +103,37 @@ namespace
                   << n_cells << "; batches equal cells bitwise: " << yes(equal) << '\n';
       }
   }
+
+  /// Whether tvb_keeps_lanes() equals tvb_keeps() on every combination.
+  bool
+  tvb_lanes_agree()
+  {
+    using VA             = VectorizedArray<double>;
+    const double inf     = std::numeric_limits<double>::infinity();
+    const double v[]     = {std::nan(""), -inf, -2., -1., -0.5, -0., 0., 0.5, 1., 2., inf};
+    std::vector<std::array<double, 4>> cases;
+    for (const double a : v)
+      for (const double b : v)
+        for (const double c : v)
+          for (const double Mh2 : {0., 1.})
+            cases.push_back({a, b, c, Mh2});
+    bool agree = true;
+    for (std::size_t first = 0; first < cases.size(); first += VA::size())
+      {
+        VA a(0.), b(0.), c(0.), Mh2(0.);
+        for (unsigned int l = 0; l < VA::size() && first + l < cases.size(); ++l)
+          {
+            a[l]   = cases[first + l][0];
+            b[l]   = cases[first + l][1];
+            c[l]   = cases[first + l][2];
+            Mh2[l] = cases[first + l][3];
+          }
+        const VA keeps = dg::internal::tvb_keeps_lanes(a, b, c, Mh2);
+        for (unsigned int l = 0; l < VA::size(); ++l)
+          agree &= (keeps[l] != 0.) == dg::internal::tvb_keeps(a[l], b[l], c[l], Mh2[l]);
+      }
+    return agree;
+  }
 } // namespace
 
 int
@@ -129,4 +166,7 @@ main()
         skeleton::System<1>(Tensor<1, 1>({1.}), skeleton::NumericalFlux::upwind),
         dg::LimiterType::componentwise, {}, true,
         [](const unsigned int, const double r) { return r; });
+
+  std::cout << "TVB test of the batches equals limit_cell()'s on special values: "
+            << yes(tvb_lanes_agree()) << '\n';
 }

@@ -41,6 +41,26 @@ namespace granular_dg::dg
       return minmod_tvb(a, b, c, Mh2) == a;
     }
 
+    /// tvb_keeps() in every lane of a SIMD batch: 1 where it keeps a, 0
+    /// where not. minmod_tvb(a, b, c) == a holds exactly when |a| <= M h^2,
+    /// a == 0, 0 < a <= b, c or 0 > a >= b, c (NaN anywhere: only through
+    /// |a| <= M h^2); every comparison is ordered, as the scalar ones.
+    template <typename Number>
+    DEAL_II_ALWAYS_INLINE inline Number
+    tvb_keeps_lanes(const Number &a, const Number &b, const Number &c, const Number &Mh2)
+    {
+      using S            = SIMDComparison;
+      const Number one   = 1., zero = 0.;
+      const Number up    = compare_and_apply_mask<S::greater_than_or_equal>(
+        b, a, compare_and_apply_mask<S::greater_than_or_equal>(c, a, one, zero), zero);
+      const Number down  = compare_and_apply_mask<S::less_than_or_equal>(
+        b, a, compare_and_apply_mask<S::less_than_or_equal>(c, a, one, zero), zero);
+      Number       keeps = compare_and_apply_mask<S::greater_than>(a, zero, up, zero);
+      keeps = compare_and_apply_mask<S::less_than>(a, zero, down, keeps);
+      keeps = compare_and_apply_mask<S::equal>(a, zero, one, keeps);
+      return compare_and_apply_mask<S::less_than_or_equal>(std::abs(a), Mh2, one, keeps);
+    }
+
     /// Whether the Physics has the optional limiter_boundary() (limiter.h).
     template <typename Physics, int dim, typename = void>
     struct has_limiter_boundary : std::false_type
@@ -456,20 +476,15 @@ namespace granular_dg::dg
               }
         Tensor<2, nc, VA> L;
         to_limiter_variables(avg, a, 0, r, dp, dm, L);
-        // the TVB test lane by lane, as limit_cell() does it
-        bool passes[W];
-        std::fill(passes, passes + W, true);
+        // the TVB test of limit_cell() in all lanes at once
+        VA Mh2_lanes, keeps = 1.;
+        Mh2_lanes.load(Mh2);
         for (unsigned int c = 0; c < nc; ++c)
-          {
-            double jump_p[W], jump_m[W], dp_c[W], dm_c[W];
-            r.jump_p[c].store(jump_p);
-            r.jump_m[c].store(jump_m);
-            dp[c].store(dp_c);
-            dm[c].store(dm_c);
-            for (unsigned int l = 0; l < W; ++l)
-              passes[l] &= internal::tvb_keeps(jump_p[l], dp_c[l], dm_c[l], Mh2[l]) &&
-                           internal::tvb_keeps(jump_m[l], dp_c[l], dm_c[l], Mh2[l]);
-          }
+          keeps *= internal::tvb_keeps_lanes(r.jump_p[c], dp[c], dm[c], Mh2_lanes) *
+                   internal::tvb_keeps_lanes(r.jump_m[c], dp[c], dm[c], Mh2_lanes);
+        bool passes[W];
+        for (unsigned int l = 0; l < W; ++l)
+          passes[l] = keeps[l] != 0.;
         // a troubled lane is limited with what the batch computed for it
         r.dp = dp;
         r.dm = dm;
