@@ -24,6 +24,8 @@ import subprocess
 
 import numpy as np
 
+from shock_capturing_study import profile_value
+
 HERE = os.path.dirname(os.path.abspath(__file__))
 # u(3, 4) of the closed form (include/granular_dg/equations/friction_column/
 # closed_form.h, u_b = -1): z = 3 slides until t_s(3) = 4.7196
@@ -54,13 +56,6 @@ def run(build, prm, out, settings):
         return json.load(f)
 
 
-def strain_at(profile, z):
-    """The mean of the strain values at x = z (both sides of a face)."""
-    d = np.genfromtxt(profile, delimiter=",", skip_header=1, names=True)
-    at = np.isclose(d["x"], z, atol=1e-9)
-    return float(np.mean(d["strain"][at])) if at.any() else float(np.interp(z, d["x"], d["strain"]))
-
-
 def multiplier_scatter(directory):
     d = np.genfromtxt(os.path.join(directory, "final-profile.csv"), delimiter=",", names=True)
     frozen = (d["z"] > 4) & (d["z"] < 13.6)
@@ -89,7 +84,7 @@ def main():
             diag = run(a.build, "tests/column/m1_base.prm", d,
                        settings + ["Mesh/cells=%d" % cells, "Output/profile points per cell=3"])
             # the prm writes t = 1, 2 and the final t = 4
-            row["error_3_4_%d" % cells] = abs(strain_at(os.path.join(d, "profile-0003.csv"), 3.)
+            row["error_3_4_%d" % cells] = abs(profile_value(os.path.join(d, "profile-0003.csv"), "strain", 3.)
                                               - EXACT_STRAIN_3_4)
             if cells == 200:
                 errors = diag["errors"]
