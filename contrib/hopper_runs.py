@@ -1,9 +1,10 @@
 #!/usr/bin/python3
-"""Extra runs behind two hopper figures (doc/hopper.md), written to OUTPUT_DIR
-(default output/):
+"""Extra runs behind two hopper figures and a table (doc/hopper.md), written
+to OUTPUT_DIR (default output/):
 
   /usr/bin/python3 contrib/hopper_runs.py range [BUILD]       # Fig. 9 bar
   /usr/bin/python3 contrib/hopper_runs.py precision [BUILD]   # work-precision
+  /usr/bin/python3 contrib/hopper_runs.py indicators [BUILD]  # 4.7's last table
 
 range: 30 deg cone to lower angles theta_w in RANGE_ANGLES, P1, N = 400, marched
   to r = 0.05 r0; output/hopper_march_range/range.csv says which completed.
@@ -13,6 +14,12 @@ precision: P1-P3 on several meshes, (a) the 30 deg cone's radial field at
   equidistant theta and the CPU time (user + system of the run, and minus
   that of a one-step run: the march);
   output/hopper_work_precision/work-precision.csv.
+indicators: the whole march (to r = 0.05 r0) of the cone and wedge 30 -> 25
+  as shipped (P1, CFL 1/3) on N = 100, 200, 400 with the limiter in every
+  cell and with the kxrcf indicator, against P2 N = 1600 references run with
+  each of the two (CFL 1/5); the error at tau = 1 and at the outlet, and the
+  CPU time of the run; output/hopper_indicators/whole-march.csv. About 40 min
+  of CPU, most of it the four references.
 BUILD is the build directory with granular_dg (default build).
 """
 import csv
@@ -137,5 +144,46 @@ def precision():
         w.writerows(rows)
 
 
+def indicators():
+    base = os.path.join(OUT, 'hopper_indicators')
+    os.makedirs(base, exist_ok=True)
+    common = ['Output/write vtu=false', 'Hopper output/step series interval=0',
+              'Hopper output/sample points=2001', 'Output/output times=1']
+    choices = ('everywhere', 'kxrcf')
+    rows = []
+    for case in ('cone_30_25', 'wedge_30_25'):
+        prm = 'prm/hopper_%s.prm' % case
+        refs = {}
+        for k in choices:
+            refs[k] = os.path.join(base, '%s_reference_%s' % (case, k))
+            code, cpu, err = run(prm, refs[k], 'Limiter/indicator=' + k, 'Discretization/degree=2',
+                                 'Hopper/cells=1600', 'Time stepping/CFL number=0.2', *common,
+                                 reuse=True)
+            assert code == 0, err
+        for n in (100, 200, 400):
+            for k in choices:
+                d = os.path.join(base, '%s_%s_n%d' % (case, k, n))
+                code, cpu, err = run(prm, d, 'Limiter/indicator=' + k, 'Hopper/cells=%d' % n,
+                                     *common, reuse=True)
+                assert code == 0, err
+                # stress-0001: tau = 1; stress-0002: the outlet
+                for i, tau in ((1, '1'), (2, 'outlet')):
+                    s = read_csv(os.path.join(d, 'stress-%04d.csv' % i))
+                    e = [l1(s, (r['T_rr_over_r'], r['T_rtheta_over_r']))
+                         for r in (read_csv(os.path.join(refs[c], 'stress-%04d.csv' % i))
+                                   for c in choices)]
+                    rows.append([case, k, n, tau, *e, cpu])
+                    print('%s %s N = %d tau = %s: L1 %.3e / %.3e (references %s), cpu %.2f s'
+                          % (case, k, n, tau, e[0], e[1], '/'.join(choices), cpu))
+        r = [read_csv(os.path.join(refs[c], 'stress-0002.csv')) for c in choices]
+        print('%s: the references differ at the outlet by %.2e'
+              % (case, l1(r[0], (r[1]['T_rr_over_r'], r[1]['T_rtheta_over_r']))))
+    with open(os.path.join(base, 'whole-march.csv'), 'w') as f:
+        w = csv.writer(f)
+        w.writerow(['case', 'indicator', 'cells', 'tau', 'l1_vs_reference_everywhere',
+                    'l1_vs_reference_kxrcf', 'cpu_s'])
+        w.writerows(rows)
+
+
 if __name__ == '__main__':
-    march_range() if mode == 'range' else precision()
+    {'range': march_range, 'precision': precision, 'indicators': indicators}[mode]()
