@@ -167,11 +167,11 @@ namespace granular_dg::dg
                       "degree p, 1 for kxrcf).");
     prm.declare_entry("subcell blending", "false", Patterns::Bool(),
                       "Blend the DG update of every stage with a first-order finite-volume "
-                      "update on the p + 1 subcells of each cell, by a factor alpha from "
-                      "the modal energy of the indicator variable (Hennemann et al. 2021; "
-                      "0 in smooth cells); conservative. Independent of Limiter/scheme (both "
-                      "may act). Line engine (serial 1D runs and the edges of networks); "
-                      "doc/engine.md.");
+                      "update on the (p + 1)^dim subcells of each cell, by a factor alpha "
+                      "from the modal energy of the indicator variable (Hennemann et al. "
+                      "2021; 0 in smooth cells); conservative. Independent of Limiter/scheme "
+                      "(both may act). Line engine (serial 1D runs and the edges of "
+                      "networks) and the 2D engine (Cartesian meshes); doc/engine.md.");
     prm.declare_entry("blending maximum", "0.5", Patterns::Double(0, 1),
                       "The largest blending factor alpha_max, in (0, 1] (1: pure "
                       "finite volumes in the cells the indicator flags most).");

@@ -14,6 +14,17 @@ granular_dg_test(mpi/layered_2d_rank_equivalence EXE ${TEST_PYTHON}
   COMPARE stdout KEEP_OUTPUT NUMDIFF -a 1e-12 -r 0 LABELS mpi)
 set_tests_properties(mpi/layered_2d_rank_equivalence PROPERTIES RUN_SERIAL TRUE)
 
+# The same with subcell blending in 2D (issue 21; layered_2d_blending.prm: the
+# pulse of amplitude 5, no limiter, 134-206 of the 384 cells blended): the
+# factors read the ghost neighbours' modes and the floor is reduced over the
+# ranks, so 1, 2 and 3 ranks agree to 1e-12 (blended_cells exactly: an
+# integer column). RUN_SERIAL: three processes on two cores.
+granular_dg_test(mpi/layered_2d_blending_ranks EXE ${TEST_PYTHON}
+  ARGS ${CMAKE_CURRENT_SOURCE_DIR}/mpi/rank_equivalence.py $<TARGET_FILE:granular_dg>
+       ${CMAKE_CURRENT_SOURCE_DIR}/mpi/layered_2d_blending.prm 1 2 3
+  COMPARE stdout KEEP_OUTPUT NUMDIFF -a 1e-12 -r 0 LABELS mpi)
+set_tests_properties(mpi/layered_2d_blending_ranks PROPERTIES RUN_SERIAL TRUE)
+
 # An inadmissible state found on rank 1 of 2 (the top row of a 2D strip):
 # summary.json's status (rank 0 writes it, and prints the same line) names
 # the position and state of that rank's point, not "on another MPI rank"

@@ -28,10 +28,17 @@ granular_dg_unit_test(unit/shared_blocks MPI 3 NUMDIFF -a 0 -r 0 LABELS mpi)
 set_tests_properties(unit/shared_blocks PROPERTIES RUN_SERIAL TRUE)
 # Subcell blending in the line engine (issue 21): the blending factors (the
 # jump cell alpha_max, its neighbours half, smooth cells 0 with their rates
-# bitwise unchanged), conservation to round-off, and with alpha = 1 the FV
+# bitwise those of the cell-by-cell kernel), conservation to round-off, and with alpha = 1 the FV
 # rate of the subcells (checked by quadrature, not by the engine's tables);
 # degrees 1-4, linear advection, periodic. Fails itself otherwise.
 granular_dg_unit_test(unit/subcell_blending NUMDIFF -a 0 -r 0)
+# Subcell blending in the 2D MatrixFree engine (issue 21): the blending
+# factors (the jump cell alpha_max, its four face neighbours half, smooth
+# cells 0 with their rates bitwise unchanged), every mean rate the DG one and
+# conservation to round-off, and with alpha = 1 the FV rate of the subcells
+# plus the DG mean's correction (checked by quadrature, not by the engine's
+# tables); degrees 1-3, 2D linear advection, periodic. Fails itself otherwise.
+granular_dg_unit_test(unit/subcell_blending_2d NUMDIFF -a 0 -r 0)
 # SIMD batches of the line engine (issue 18): rates with batches equal the
 # cell-by-cell kernel to 1e-14 of their size (elasticity quadratic/impedance
 # and exponential/LLF with two materials, the column with gravity, periodic

@@ -7,6 +7,7 @@
 #include <deal.II/lac/la_parallel_vector.h>
 #include <deal.II/matrix_free/matrix_free.h>
 
+#include <granular_dg/dg/blended_cells.h>
 #include <granular_dg/dg/boundary.h>
 #include <granular_dg/dg/numerical_flux.h>
 #include <granular_dg/dg/operator.h>
@@ -140,7 +141,29 @@ namespace granular_dg::dg
       const auto n = [](const auto &v) { return v.capacity() * sizeof(v[0]); };
       return data.memory_consumption() + n(inverse_cell_volume) +
              inverse_mass_diagonal.memory_consumption() + n(cell_coefficients) +
-             n(face_coefficients_m) + n(face_coefficients_p);
+             n(face_coefficients_m) + n(face_coefficients_p) + blending.memory_consumption();
+    }
+
+    /// Subcell blending (BlendedCells) on axis-aligned Cartesian meshes in
+    /// 2D; false in 1D (the line engine blends there).
+    bool
+    set_subcell_blending(const double alpha_max) override
+    {
+      if constexpr (dim == 1)
+        return false;
+      else
+        {
+          blending_max = alpha_max;
+          if (dof_handler != nullptr)
+            blending.reinit(*dof_handler, phys, boundary, blending_max);
+          return true;
+        }
+    }
+
+    const std::vector<double> &
+    blending_factors() const override
+    {
+      return blending.factors();
     }
 
     void
@@ -219,5 +242,9 @@ namespace granular_dg::dg
     std::vector<Coefficients<VA>> cell_coefficients, face_coefficients_m,
       face_coefficients_p;
     mutable double time = 0.;
+    /// subcell blending (2D; off while blending_max = 0)
+    const DoFHandler<dim>           *dof_handler  = nullptr;
+    double                           blending_max = 0.;
+    BlendedCells<dim, Physics>       blending;
   };
 } // namespace granular_dg::dg

@@ -144,6 +144,9 @@ namespace granular_dg::dg
         phi.set_dof_values(inverse_mass_diagonal);
       }
     compress_inverse_mass(phi.dofs_per_cell);
+    this->dof_handler = &dof_handler;
+    if constexpr (dim > 1)
+      blending.reinit(dof_handler, phys, boundary, blending_max);
   }
 
   template <int dim, typename Physics, int width>
@@ -459,6 +462,9 @@ namespace granular_dg::dg
               x[c * n + i] *= v;
           }
       }
+    if constexpr (dim > 1)
+      if (blending.enabled())
+        blending.apply(t, src, dst);
   }
 
   template <int dim, typename Physics, int width>

@@ -173,9 +173,10 @@ namespace granular_dg::dg
       if (const std::string why = why_cells_cannot_be_skipped(method, scene); !why.empty())
         require(false, "Time stepping/skip tolerance", method.skip_tolerance,
                 "0 here: skipping quiet cells needs " + why);
-    require(method.blending_max == 0 || runs_line_engine(dim, method.engine),
+    require(method.blending_max == 0 || runs_line_engine(dim, method.engine) || dim == 2,
             "Limiter/subcell blending", "true",
-            "false here: subcell blending is built in the line engine (serial 1D runs)");
+            "false here: subcell blending is built in the line engine (serial 1D runs) and the "
+            "2D engine");
     if (method.scheme == TimeScheme::ssp_rk3)
       return;
     const std::string operation = HookList<dim>(scene.hooks).stage_operation();
@@ -436,7 +437,7 @@ namespace granular_dg::dg
     if (method.indicator != TroubleIndicator::everywhere)
       row.push_back(Utilities::MPI::sum(limiter.n_flagged(), solution.get_mpi_communicator()));
     if (method.blending_max > 0)
-      row.push_back(op->n_blended_cells());
+      row.push_back(Utilities::MPI::sum(op->n_blended_cells(), solution.get_mpi_communicator()));
     if (scene.exact)
       {
         const auto e  = errors(t);

@@ -89,8 +89,15 @@ namespace granular_dg::dg
         total += q[k] * q[k];
       if (n < 2 || !(total > floor2))
         return 0.;
-      const double energy = q[n - 1] * q[n - 1] / total;
-      const double alpha  = 1. / (1. + std::exp(-sharpness / threshold * (energy - threshold)));
+      return factor(q[n - 1] * q[n - 1] / total);
+    }
+
+    /// The blending factor before smoothing of a cell whose indicator
+    /// variable has the energy share `energy` in its highest modes.
+    double
+    factor(const double energy) const
+    {
+      const double alpha = 1. / (1. + std::exp(-sharpness / threshold * (energy - threshold)));
       if (alpha < alpha_min)
         return 0.;
       return std::min(alpha > 1. - alpha_min ? 1. : alpha, alpha_max);
