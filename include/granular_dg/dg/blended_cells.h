@@ -161,19 +161,16 @@ namespace granular_dg::dg
       for (unsigned int c = 0; c < layout.n_owned(); ++c)
         scale = std::max(scale, std::abs(u.local_element(layout.index(c, ic, 0))));
       const double floor = indicator_floor_fraction * Utilities::MPI::max(scale, comm);
-      for (unsigned int c = 0; c < layout.n_cells(); ++c)
-        {
-          std::array<double, SubcellBlending::max_modes> level{};
-          double                                         total = 0;
-          for (unsigned int m = 0; m < n_modes; ++m)
-            {
-              const double q = u.local_element(layout.index(c, ic, m));
-              level[std::max(m % n1, m / n1)] += q * q;
-              total += q * q;
-            }
-          raw_alpha[c] =
-            (n1 < 2 || !(total > floor * floor)) ? 0. : blend.factor(level[n1 - 1] / total);
-        }
+      with_n_modes(n1, [&](const auto n) {
+        Values q;
+        for (unsigned int c = 0; c < layout.n_cells(); ++c)
+          {
+            for (unsigned int m = 0; m < n_modes; ++m)
+              q[m] = u.local_element(layout.index(c, ic, m));
+            const double share = highest_mode_energy_share<dim, decltype(n)::value>(q.data(), floor);
+            raw_alpha[c]       = (n1 < 2 || share < 0) ? 0. : blend.factor(share);
+          }
+      });
     }
 
     /// the subcell index of the 1D subcell indices j[0..dim)

@@ -9,6 +9,7 @@
 #include <granular_dg/dg/boundary.h>
 #include <granular_dg/dg/modal_layout.h>
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <optional>
@@ -48,6 +49,28 @@ namespace granular_dg::dg
   /// largest cell mean holds round-off (ahead of a front), not a shock: the
   /// floor of the modal-energy indicator and of subcell blending.
   inline constexpr double indicator_floor_fraction = 1e-10;
+
+  /// The modal-energy indicator's measure of one field of a cell (its modes
+  /// q, n1 per direction, m = k_0 + n1 k_1): the share e_p / sum_k e_k of the
+  /// highest degree p = n1 - 1 in the energy by degree (in 2D a mode's degree
+  /// is the larger of its two), or -1 where the energy is not above floor^2
+  /// (round-off ahead of a front is not a shock). Used by the limiter's
+  /// modal_energy indicator and by subcell blending in 2D.
+  template <int dim, unsigned int n1>
+  double
+  highest_mode_energy_share(const double *q, const double floor)
+  {
+    constexpr unsigned int n_modes = dim == 1 ? n1 : n1 * n1;
+    std::array<double, n1> level{};
+    for (unsigned int m = 0; m < n_modes; ++m)
+      level[std::max(m % n1, m / n1)] += q[m] * q[m];
+    double total = 0;
+    for (const double e : level)
+      total += e;
+    if (!(total > floor * floor))
+      return -1.;
+    return level[n1 - 1] / total;
+  }
 
   /// What the limiter limits: nothing, the conserved variables, the
   /// characteristic fields, or variables the physics names (its

@@ -526,19 +526,9 @@ namespace granular_dg::dg
   ModalLimiter<dim, Physics>::indicated(const double *x) const
   {
     constexpr unsigned int n_modes = dim == 1 ? n1 : n1 * n1;
-    constexpr unsigned int p       = n1 - 1;
-    const double          *q       = x + Physics::indicator_component * n_modes;
-    // energy of the modes by degree (in 2D the larger of the two degrees)
-    std::array<double, n1> level{};
-    for (unsigned int m = 0; m < n_modes; ++m)
-      level[std::max(m % n1, m / n1)] += q[m] * q[m];
-    double total = 0;
-    for (const double e : level)
-      total += e;
-    // round-off-sized values (ahead of a front) are not a shock
-    if (!(total > indicator_floor * indicator_floor))
-      return false;
-    return level[p] / total > indicator_threshold;
+    // below the floor the share is -1: not flagged (the threshold is > 0)
+    return highest_mode_energy_share<dim, n1>(x + Physics::indicator_component * n_modes,
+                                              indicator_floor) > indicator_threshold;
   }
 
   template <int dim, typename Physics>
