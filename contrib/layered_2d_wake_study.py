@@ -39,8 +39,11 @@ def run(build, runs, name, degree, cells, blending, ranks):
     """runs RUNS/name unless it completed before; returns its summary"""
     out = os.path.join(runs, name)
     summary = os.path.join(out, "summary.json")
-    if os.path.exists(summary) and json.load(open(summary))["status"] == "completed":
-        return json.load(open(summary))
+    if os.path.exists(summary):
+        with open(summary) as f:
+            done = json.load(f)
+        if done["status"] == "completed":
+            return done
     here = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
     cmd = ["mpirun", "--allow-run-as-root", "--oversubscribe", "-np", str(ranks),
            os.path.join(build, "granular_dg"), os.path.join(here, "prm/layered_2d.prm"),
@@ -56,7 +59,8 @@ def run(build, runs, name, degree, cells, blending, ranks):
     print("running", name, flush=True)
     with open(out + ".log", "w") as log:
         subprocess.run(cmd, stdout=log, stderr=subprocess.STDOUT, check=True)
-    return json.load(open(summary))
+    with open(summary) as f:
+        return json.load(f)
 
 
 def main():
