@@ -1,7 +1,11 @@
 #!/usr/bin/env bash
-# Install everything granular_dg needs from Debian packages. Idempotent: packages
+# Install what granular_dg needs from Debian packages. Idempotent: packages
 # already present are not reinstalled, and apt's lists are refreshed only when
 # something is missing.
+#
+#   bash contrib/install-deps.sh          what building and running needs
+#   bash contrib/install-deps.sh --tests  that, and what the test suite, the
+#                                         figures and the comparisons need
 set -euo pipefail
 
 packages=(
@@ -10,11 +14,19 @@ packages=(
   libboost-dev            # Boost.Math (Bessel, quadrature, roots), Boost.odeint
   zlib1g-dev              # CRC-32 of checkpoints (crc32_combine over MPI ranks)
   openmpi-bin libopenmpi-dev
+)
+test_packages=(
   numdiff                 # regression-test comparison
+  python3-matplotlib python3-numpy  # figures in doc/ (run with /usr/bin/python3)
   libdeal.ii-doc          # deal.II's examples: step-67, the throughput comparator of contrib/benchmark.py
   paraview python3-paraview xvfb  # pvpython: a real-client test of the VTU/PVD output
-  python3-matplotlib python3-numpy  # figures in doc/ (run with /usr/bin/python3)
 )
+
+case "${1:-}" in
+  "") ;;
+  --tests) packages+=("${test_packages[@]}") ;;
+  *) echo "install-deps: unknown argument '$1' (none, or --tests)" >&2; exit 2 ;;
+esac
 
 missing=()
 for p in "${packages[@]}"; do

@@ -14,7 +14,9 @@
 
 #include <filesystem>
 #include <fstream>
+#include <cstdlib>
 #include <iostream>
+#include <optional>
 #include <regex>
 
 using namespace granular_dg;
@@ -108,80 +110,111 @@ namespace
          "error, 130/143 interrupted by SIGINT/SIGTERM (a checkpoint is written).\n"
          "Examples are in prm/; documentation in doc/.\n";
   }
+
+  /// Whether an MPI launcher (mpirun, srun) started this process: its rank
+  /// in the launcher's environment, "" if there is none.
+  std::string
+  launcher_rank()
+  {
+    for (const char *name : {"OMPI_COMM_WORLD_RANK", "PMIX_RANK", "PMI_RANK"})
+      if (const char *rank = std::getenv(name))
+        return rank;
+    return "";
+  }
+
+  /// The command line: a run (a parameter file and its --set overrides), or
+  /// a request that needs no MPI (--help, --version, --list-scenes,
+  /// --print-parameters), answered here; then its exit code is returned,
+  /// -1 for a run. root: whether this process prints.
+  int
+  parse_command_line(const std::vector<std::string> &args, const bool root,
+                     std::string &filename, std::vector<std::string> &overrides)
+  {
+    for (unsigned int i = 0; i < args.size(); ++i)
+      {
+        const std::string &a = args[i];
+        if (a == "--help" || a == "-h")
+          {
+            if (root)
+              print_help();
+            return 0;
+          }
+        else if (a == "--list-scenes")
+          {
+            if (root)
+              for (const auto &scene : registered_scenes())
+                std::cout << scene.name << '\n';
+            return 0;
+          }
+        else if (a == "--version")
+          {
+            if (root)
+              std::cout << "granular_dg " << GRANULAR_DG_VERSION << " (git "
+                        << GRANULAR_DG_GIT_REVISION << "), deal.II " << DEAL_II_PACKAGE_VERSION
+                        << std::endl;
+            return 0;
+          }
+        else if (a == "--print-parameters")
+          {
+            const std::string name = i + 1 < args.size() ? args[i + 1] : "";
+            if (name.empty())
+              throw InputError("--print-parameters needs a scene: one of " + scene_names());
+            ParameterHandler prm;
+            declare_all(prm, find_scene(name, "--print-parameters"));
+            prm.set("scene", name);
+            if (root)
+              prm.print_parameters(std::cout, ParameterHandler::PRM);
+            return 0;
+          }
+        else if (a == "--set")
+          {
+            if (i + 1 >= args.size())
+              throw InputError("--set needs an argument Section/name=value");
+            overrides.push_back(args[++i]);
+          }
+        else if (a == "--benchmark")
+          overrides.push_back("Benchmark/enabled=true");
+        else if (a == "--resume")
+          overrides.push_back("Checkpoint/resume=true");
+        else if (a.rfind("--set=", 0) == 0)
+          overrides.push_back(a.substr(6));
+        else if (a.rfind("-", 0) == 0)
+          throw InputError("unknown option '" + a + "' (see granular_dg --help)");
+        else if (filename.empty())
+          filename = a;
+        else
+          throw InputError("more than one parameter file given ('" + filename + "' and '" + a +
+                           "')");
+      }
+    if (!filename.empty())
+      return -1;
+    if (root)
+      print_help();
+    return 2;
+  }
 } // namespace
 
 int
 main(int argc, char **argv)
 {
-  Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
-  const bool root = Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) == 0;
+  // MPI starts only for a run. (A run that no launcher started is an Open
+  // MPI singleton. OMPI_MCA_ess_singleton_isolated=1 would save it 0.3 s of
+  // start-up, but then a SIGINT near the end of a run made Open MPI print
+  // lines of its own beside the one-line report: not set here;
+  // doc/performance.md, "Build and start-up".)
+  const std::string                               rank = launcher_rank();
+  bool                                            root = rank.empty() || rank == "0";
+  std::optional<Utilities::MPI::MPI_InitFinalize> mpi;
   try
     {
-      std::vector<std::string> args(argv + 1, argv + argc), overrides;
-      std::string              filename;
-      for (unsigned int i = 0; i < args.size(); ++i)
-        {
-          const std::string &a = args[i];
-          if (a == "--help" || a == "-h")
-            {
-              if (root)
-                print_help();
-              return 0;
-            }
-          else if (a == "--list-scenes")
-            {
-              if (root)
-                for (const auto &scene : registered_scenes())
-                  std::cout << scene.name << '\n';
-              return 0;
-            }
-          else if (a == "--version")
-            {
-              if (root)
-                std::cout << "granular_dg " << GRANULAR_DG_VERSION << " (git "
-                          << GRANULAR_DG_GIT_REVISION << "), deal.II "
-                          << DEAL_II_PACKAGE_VERSION << std::endl;
-              return 0;
-            }
-          else if (a == "--print-parameters")
-            {
-              const std::string name = i + 1 < args.size() ? args[i + 1] : "";
-              if (name.empty())
-                throw InputError("--print-parameters needs a scene: one of " + scene_names());
-              ParameterHandler prm;
-              declare_all(prm, find_scene(name, "--print-parameters"));
-              prm.set("scene", name);
-              if (root)
-                prm.print_parameters(std::cout, ParameterHandler::PRM);
-              return 0;
-            }
-          else if (a == "--set")
-            {
-              if (i + 1 >= args.size())
-                throw InputError("--set needs an argument Section/name=value");
-              overrides.push_back(args[++i]);
-            }
-          else if (a == "--benchmark")
-            overrides.push_back("Benchmark/enabled=true");
-          else if (a == "--resume")
-            overrides.push_back("Checkpoint/resume=true");
-          else if (a.rfind("--set=", 0) == 0)
-            overrides.push_back(a.substr(6));
-          else if (a.rfind("-", 0) == 0)
-            throw InputError("unknown option '" + a + "' (see granular_dg --help)");
-          else if (filename.empty())
-            filename = a;
-          else
-            throw InputError("more than one parameter file given ('" + filename +
-                             "' and '" + a + "')");
-        }
-      if (filename.empty())
-        {
-          if (root)
-            print_help();
-          return 2;
-        }
+      const std::vector<std::string> args(argv + 1, argv + argc);
+      std::vector<std::string>       overrides;
+      std::string                    filename;
+      if (const int code = parse_command_line(args, root, filename, overrides); code >= 0)
+        return code;
 
+      mpi.emplace(argc, argv, 1);
+      root = Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) == 0;
       const Scene     &scene = find_scene(find_scene_name(filename, overrides), "scene");
       ParameterHandler prm;
       declare_all(prm, scene);

@@ -8,6 +8,13 @@
 
 #if DEAL_II_VECTORIZATION_WIDTH_IN_BITS > 0
 
+// The factories serve the kernels of run-time degree (FEEvaluation with
+// fe_degree = -1: the 1D MatrixFree engine, the comparison engine of 1D runs,
+// and the skeleton scene); every shipped case runs kernels of compiled degree
+// (the 2D engine) or the line engine. So only degree 1 gets a compiled path
+// here, the others deal.II's general one (doc/performance.md, "Build and
+// start-up", has what this saves and costs).
+#  define FE_EVAL_FACTORY_DEGREE_MAX 1
 #  include <deal.II/matrix_free/evaluation_template_face_factory.templates.h>
 
 DEAL_II_NAMESPACE_OPEN

@@ -1,0 +1,66 @@
+/**
+ * granular_dg: the command a user runs. It answers what needs no solver
+ * (--help, --version, --list-scenes) from text the engine printed when it
+ * was built, and hands everything else to the engine, granular_dg_engine
+ * beside it, by exec (same process, arguments and environment, so mpirun and
+ * signals see the engine itself). Loading deal.II and its ~200 shared
+ * libraries takes about 0.4 s before main(); the answers here take none of it
+ * (doc/performance.md, "Build and start-up").
+ */
+
+#include <granular_dg/engine_information.h>
+
+#include <unistd.h>
+
+#include <cerrno>
+#include <cstring>
+#include <iostream>
+#include <string>
+
+namespace
+{
+  /// The engine: granular_dg_engine in the directory of this program.
+  std::string
+  engine_path(const char *argv0)
+  {
+    char      buffer[4096];
+    const int n    = ::readlink("/proc/self/exe", buffer, sizeof(buffer) - 1);
+    std::string self = n > 0 ? std::string(buffer, n) : std::string(argv0);
+    const auto  slash = self.rfind('/');
+    return (slash == std::string::npos ? std::string(".") : self.substr(0, slash)) +
+           "/granular_dg_engine";
+  }
+} // namespace
+
+int
+main(int argc, char **argv)
+{
+  // the first argument decides, as in the engine (which also answers these
+  // when it meets them after other arguments)
+  const std::string first = argc > 1 ? argv[1] : "";
+  if (argc == 1)
+    {
+      std::cout << granular_dg::engine_information::help;
+      return 2;
+    }
+  if (first == "--help" || first == "-h")
+    {
+      std::cout << granular_dg::engine_information::help;
+      return 0;
+    }
+  if (first == "--version")
+    {
+      std::cout << granular_dg::engine_information::version;
+      return 0;
+    }
+  if (first == "--list-scenes")
+    {
+      std::cout << granular_dg::engine_information::scenes;
+      return 0;
+    }
+  const std::string engine = engine_path(argv[0]);
+  ::execv(engine.c_str(), argv);
+  std::cerr << "granular_dg: internal error: cannot start the engine " << engine << ": "
+            << std::strerror(errno) << std::endl;
+  return 4;
+}
