@@ -22,7 +22,7 @@ namespace granular_dg
 
   namespace
   {
-    const char *const magic = "granular_dg checkpoint 4";
+    const char *const magic = "granular_dg checkpoint 5";
 
     volatile std::sig_atomic_t received_signal = 0;
 
@@ -423,6 +423,26 @@ namespace granular_dg
   checkpoint_directory(const std::string &directory)
   {
     return (fs::path(directory) / "checkpoints").string();
+  }
+
+  void
+  remove_checkpoints(const std::string &directory)
+  {
+    std::error_code ec;
+    const fs::path  dir = checkpoint_directory(directory);
+    if (!fs::is_directory(dir, ec))
+      return;
+    for (const auto &file : checkpoint_files(directory))
+      fs::remove(file, ec);
+    for (const auto &entry : fs::directory_iterator(dir, ec))
+      {
+        const std::string n = entry.path().filename().string();
+        if (n.size() > 9 && n[0] == '.' && n.compare(n.size() - 9, 9, ".ckpt.tmp") == 0 &&
+            step_of(n.substr(1, n.size() - 5)) >= 0)
+          fs::remove(entry.path(), ec);
+      }
+    // removes the folder only if nothing else is in it
+    fs::remove(dir, ec);
   }
 
   bool

@@ -20,6 +20,14 @@ namespace granular_dg
     parameter_file() = filename;
   }
 
+  bool
+  is_parameter_file(const std::string &path)
+  {
+    std::error_code ec;
+    return !parameter_file().empty() &&
+           std::filesystem::equivalent(parameter_file(), path, ec) && !ec;
+  }
+
   std::string
   resolve_input_path(const std::string &path)
   {

@@ -1,5 +1,6 @@
 #include <granular_dg/base/checkpoint.h>
 #include <granular_dg/base/errors.h>
+#include <granular_dg/base/input_path.h>
 #include <granular_dg/base/output.h>
 
 #include <deal.II/base/utilities.h>
@@ -218,21 +219,30 @@ namespace granular_dg
     }
 
     /// Remove what the previous run in directory wrote: the files its
-    /// manifest lists and its checkpoints. A file is removed only if it lies
-    /// inside directory (a manifest is plain text a user could edit).
+    /// manifest lists and its checkpoint files (those of its part runs in
+    /// subdirectories too). A file is removed only if it lies inside
+    /// directory (a manifest is plain text a user could edit) and is not
+    /// this run's parameter file; files a user put beside them are kept.
     void
     remove_previous_run(const fs::path &directory)
     {
-      std::error_code ec;
-      fs::remove_all(checkpoint_directory(directory.string()), ec);
-      const fs::path root = fs::weakly_canonical(directory, ec);
+      std::error_code       ec;
+      const fs::path        root = fs::weakly_canonical(directory, ec);
+      std::set<std::string> subdirectories;
       for (const auto &name : read_manifest(directory))
         {
           const fs::path file = fs::weakly_canonical(directory / name, ec);
-          const auto     rel  = file.lexically_relative(root).string();
-          if (!rel.empty() && rel.rfind("..", 0) != 0 && fs::is_regular_file(file, ec))
+          const auto     rel  = file.lexically_relative(root);
+          if (rel.empty() || rel.string().rfind("..", 0) == 0)
+            continue;
+          if (std::distance(rel.begin(), rel.end()) > 1)
+            subdirectories.insert(rel.begin()->string());
+          if (fs::is_regular_file(file, ec) && !is_parameter_file(file.string()))
             fs::remove(file, ec);
         }
+      remove_checkpoints(directory.string());
+      for (const auto &sub : subdirectories)
+        remove_checkpoints((directory / sub).string());
       fs::remove(directory / manifest_name, ec);
     }
 

@@ -1,6 +1,7 @@
 #include <deal.II/base/mpi.h>
 
 #include <granular_dg/base/errors.h>
+#include <granular_dg/base/input_path.h>
 #include <granular_dg/base/output.h>
 #include <granular_dg/base/run_parameters.h>
 
@@ -321,6 +322,12 @@ namespace granular_dg
       {
         try
           {
+            const std::string dump = params.directory + "/parameters.prm";
+            require(params.benchmark.enabled || !is_parameter_file(dump), "Output/directory",
+                    params.directory,
+                    "a directory whose parameters.prm is not this run's parameter file: the run "
+                    "writes the parameters it used there and would overwrite " +
+                      dump + "; rename the case file or choose another directory");
             if (params.benchmark.enabled)
               prepare_benchmark_directory(params.directory);
             else if (params.resume)

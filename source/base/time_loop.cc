@@ -72,6 +72,7 @@ namespace granular_dg
     ar.io(last_main_file);
     ar.io(snapshots);
     ar.io(xdmf_grids);
+    ar.io(rest_from);
     ar.io(timeseries_size);
   }
 
@@ -213,19 +214,39 @@ namespace granular_dg
   }
 
   void
+  TimeLoop::skip_step(const double dt_step)
+  {
+    t += dt_step;
+    dt = dt_step;
+    ++step;
+    problem.end_of_step(t, dt, step);
+  }
+
+  void
   TimeLoop::steps()
   {
     loop_timer.stop();
     loop_timer.reset();
     while (next_output < output_times.size())
       {
-        if (problem.at_rest())
-          return finish_at_rest();
-        problem.store(Evolution::Slot::last_good);
+        // at rest the state is the last good one (the last step kept every
+        // value): stored only before a step that is computed
+        const bool resting = problem.at_rest();
+        if (!resting)
+          problem.store(Evolution::Slot::last_good);
         bool         lands   = false;
         const double t_out   = output_times[next_output];
         const double dt_step = next_step(t_out, lands);
-        take_step(dt_step, lands, t_out);
+        const bool   repeats = !lands && dt_step == dt;
+        if (resting && !lands && problem.skip_step(dt_step))
+          skip_step(dt_step);
+        else
+          {
+            if (resting)
+              problem.store(Evolution::Slot::last_good);
+            take_step(dt_step, lands, t_out);
+            watch_rest(repeats);
+          }
         if (lands)
           {
             record();
@@ -238,17 +259,25 @@ namespace granular_dg
   }
 
   void
-  TimeLoop::finish_at_rest()
+  TimeLoop::watch_rest(const bool repeats)
   {
-    result.at_rest_from = t;
-    if (root && write_files && params.progress_interval > 0)
-      std::cout << "  at rest from " << info.time_name << " = " << format_number(t)
-                << " (step " << step << "): no state can change any more" << std::endl;
-    for (; next_output < output_times.size(); ++next_output)
+    if (!problem.at_rest())
       {
-        t = output_times[next_output];
-        record();
+        // a step of another size than the last computes every cell and may
+        // change the state; only a repeated step that did not come to rest
+        // shows motion
+        if (repeats)
+          rest_from = -1;
+        return;
       }
+    if (rest_from >= 0)
+      return;
+    rest_from = t;
+    if (!rest_announced && root && write_files && params.progress_interval > 0)
+      std::cout << "  at rest from " << info.time_name << " = " << format_number(t) << " (step "
+                << step << "): steps of this size change nothing and are not computed"
+                << std::endl;
+    rest_announced = true;
   }
 
   void
@@ -365,6 +394,7 @@ namespace granular_dg
   RunResult
   TimeLoop::complete()
   {
+    result.at_rest_from    = rest_from;
     result.n_steps         = step;
     result.final_time      = t;
     result.time_loop_s     = loop_timer.wall_time();

@@ -39,22 +39,42 @@ namespace granular_dg::dg
            (dim == 1 ? points * 16. * (n_fields + 1) : 0.);
   }
 
+  namespace
+  {
+    /// Peak bytes per DoF of a DG run, measured on the 2D strip at 2000 x 200
+    /// cells, P2 (10.8 M DoFs, one rank): 95 without snapshots, 185 writing
+    /// VTU, 230 writing HDF5 (doc/program.md, "Memory"). The estimate is the
+    /// solver's 134 (its 95 and a margin for other meshes, ranks and
+    /// checkpoints) and what a snapshot adds at its peak (DataOut's patches
+    /// and the file's buffers).
+    constexpr double bytes_per_dof               = 134.;
+    constexpr double vtu_snapshot_bytes_per_dof  = 90.;
+    constexpr double hdf5_snapshot_bytes_per_dof = 136.;
+  } // namespace
+
   void
-  require_memory_fits(const double n_cells, const unsigned int degree, const int dim,
-                      const unsigned int n_components, const std::string &parameter,
+  require_memory_fits(const RunParameters &run, const double n_cells, const unsigned int degree,
+                      const int dim, const unsigned int n_components, const std::string &parameter,
                       const std::string &value, const std::string &change)
   {
+    const bool   snapshots = run.write_vtu && !run.convergence && !run.benchmark.enabled;
+    const double per_dof =
+      bytes_per_dof +
+      (snapshots ? (run.hdf5 ? hdf5_snapshot_bytes_per_dof : vtu_snapshot_bytes_per_dof) : 0.);
     const double n_dofs    = n_cells * std::pow(degree + 1., dim) * n_components;
     const double ranks     = Utilities::MPI::job_supports_mpi() ?
                                Utilities::MPI::n_mpi_processes(MPI_COMM_WORLD) :
                                1.;
-    const double needed    = n_dofs * bytes_per_dof / ranks;
+    const double needed    = n_dofs * per_dof / ranks;
     const double available = available_memory_per_rank();
     require(available <= 0. || needed <= available, parameter, value,
             "the run needs about " + format_bytes(needed) + " per MPI rank (" +
-              format_number(n_dofs) + " DoFs at ~" + format_number(bytes_per_dof) +
-              " bytes each), more than the " + format_bytes(available) +
-              " available (MemAvailable): " + change);
+              format_number(n_dofs) + " DoFs at ~" + format_number(per_dof) + " bytes each" +
+              (snapshots ? std::string(", writing ") + (run.hdf5 ? "HDF5" : "VTU") +
+                             " snapshots included" :
+                           std::string()) +
+              "), more than the " + format_bytes(available) + " available (MemAvailable): " +
+              change + (snapshots ? ", or write no snapshots (Output/write vtu = false)" : ""));
   }
 
   std::string
@@ -127,15 +147,17 @@ namespace granular_dg::dg
                       "low-storage schemes lsrk_S_O (S stages, order O), more stable per "
                       "stage, for unlimited runs. Allowed: " +
                         time_scheme_names.selection() + ".");
-    prm.declare_entry("skip tolerance", "0", Patterns::Double(0, 1e-6),
+    prm.declare_entry("skip tolerance", "0", Patterns::Double(0),
                       "Skip the cells that cannot change: after a step, a cell whose values "
-                      "all moved by at most this times the largest |value| of the state is "
-                      "quiet, and the next step (of the same size) computes only the cells "
-                      "within reach of a cell that was not; when all are quiet, the run is "
-                      "at rest and finishes at once, writing the remaining snapshots. "
-                      "Differences to the full computation stay at this level "
-                      "(doc/engine.md). For scenes whose operator does not depend on time, "
-                      "1D, line engine, ssp_rk3. 0: compute every cell. Allowed: [0, 1e-6].");
+                      "all moved by at most this times the largest |value| of their "
+                      "component so far is quiet, and the next step (of the same size) "
+                      "computes only the cells within reach of a cell that was not; when "
+                      "all are quiet, the run is at rest and steps of that size are not "
+                      "computed (steps of another size, such as those that land on output "
+                      "times, are). The results differ from the full computation by about "
+                      "10 times this, of each component's largest value (doc/engine.md). "
+                      "For scenes whose operator does not depend on time, 1D, line engine, "
+                      "ssp_rk3. 0: compute every cell. Allowed: [0, 1e-14].");
     prm.leave_subsection();
 
     const std::string limiters = limiter_selection(physics_variables);
@@ -153,16 +175,19 @@ namespace granular_dg::dg
                       "M of the TVB minmod: slopes with |slope| <= M h^2 are not "
                       "limited (0 = TVD minmod).");
     prm.declare_entry("indicator", "everywhere",
-                      Patterns::Selection("everywhere|modal_energy|kxrcf"),
+                      Patterns::Selection("everywhere|modal_energy|kxrcf|"
+                                          "modal_energy_neighbours"),
                       "Which cells the limiter examines: everywhere (every cell), "
                       "modal_energy (only the cells whose indicator variable, named by the "
                       "physics, has too much energy in its highest Legendre modes: the "
-                      "indicator of Hennemann et al. 2021), or kxrcf (only the cells with "
+                      "indicator of Hennemann et al. 2021), kxrcf (only the cells with "
                       "large jumps of the indicator variable across their faces: "
-                      "Krivodonova et al. 2004); doc/engine.md.");
+                      "Krivodonova et al. 2004), or modal_energy_neighbours (the cells "
+                      "modal_energy flags and their face neighbours: a shock flagged at its "
+                      "foot is limited above it too); doc/engine.md.");
     prm.declare_entry("indicator threshold", "0", Patterns::Double(0),
-                      "modal_energy: the share of the energy in the highest modes above "
-                      "which a cell is flagged, in (0, 1); kxrcf: the bound on the "
+                      "modal_energy(_neighbours): the share of the energy in the highest "
+                      "modes above which a cell is flagged, in (0, 1); kxrcf: the bound on the "
                       "normalised face jumps; 0: automatic (0.5 10^(-1.8 (p+1)^(1/4)) for "
                       "degree p, 1 for kxrcf).");
     prm.declare_entry("subcell blending", "false", Patterns::Bool(),
@@ -206,6 +231,12 @@ namespace granular_dg::dg
     scheme = time_scheme_names.parse("Time stepping/scheme", prm.get("scheme"));
     skip_tolerance = prm.get_double("skip tolerance");
     prm.leave_subsection();
+    require(skip_tolerance <= max_skip_tolerance, "Time stepping/skip tolerance",
+            skip_tolerance,
+            "must be in [0, " + format_number(max_skip_tolerance) +
+              "]: a larger tolerance takes slowly moving cells for quiet ones, and the "
+              "results no longer agree with the full computation to 1e-12 "
+              "(doc/engine.md, \"Skipping quiet cells\")");
     // (a stability study, check stability limit = false, may go beyond 1)
     // (SSP-RK3: at most 1, also for the network's forward Euler at degree 0)
     const double largest =
@@ -222,18 +253,39 @@ namespace granular_dg::dg
     tvb_M        = prm.get_double("TVB constant");
     indicator    = EnumNames<TroubleIndicator>({{TroubleIndicator::everywhere, "everywhere"},
                                              {TroubleIndicator::modal_energy, "modal_energy"},
-                                             {TroubleIndicator::kxrcf, "kxrcf"}})
+                                             {TroubleIndicator::kxrcf, "kxrcf"},
+                                             {TroubleIndicator::modal_energy_neighbours,
+                                              "modal_energy_neighbours"}})
                   .parse("Limiter/indicator", prm.get("indicator"));
     indicator_threshold = prm.get_double("indicator threshold");
-    require(indicator != TroubleIndicator::modal_energy || indicator_threshold < 1,
+    require((indicator != TroubleIndicator::modal_energy &&
+             indicator != TroubleIndicator::modal_energy_neighbours) ||
+              indicator_threshold < 1,
             "Limiter/indicator threshold", indicator_threshold,
-            "must be in [0, 1) with indicator = modal_energy (a share of the energy; "
-            "0 = automatic)");
+            "must be in [0, 1) with indicator = modal_energy or modal_energy_neighbours (a "
+            "share of the energy; 0 = automatic)");
+    // a warning, not a refusal: --set Limiter/indicator=everywhere on a case
+    // that sets a threshold is how the limiter in every cell is compared
+    static bool warned = false;
+    if (indicator == TroubleIndicator::everywhere && indicator_threshold != 0 && !warned &&
+        (!Utilities::MPI::job_supports_mpi() ||
+         Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) == 0))
+      {
+        std::cerr << "granular_dg: warning: Limiter/indicator threshold = "
+                  << format_number(indicator_threshold)
+                  << " has no effect with Limiter/indicator = everywhere (every cell is "
+                     "examined; a threshold selects the cells an indicator flags)"
+                  << std::endl;
+        warned = true;
+      }
     if (prm.get_bool("subcell blending"))
       {
         blending_max = prm.get_double("blending maximum");
         require(blending_max > 0, "Limiter/blending maximum", blending_max,
                 "must be in (0, 1] with subcell blending = true");
+        require(degree > 0 || run.convergence, "Limiter/subcell blending", "true",
+                "false at Discretization/degree = 0 (a cell of degree 0 is its own only "
+                "subcell: blending would change nothing)");
       }
     prm.leave_subsection();
     const EnumNames<LimiterType> limiter_names(

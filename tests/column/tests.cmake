@@ -88,12 +88,42 @@ granular_dg_test(column/bad_friction PRM column/m1_stuck.prm
 # changes no result: m = 3/2 on (0, 10), 400 P2 cells, to t = 60, snapshots
 # every 2. Every profile (31 snapshots and the final one) of the skipping run
 # equals the full computation's to 1e-12 of each quantity's scale over the
-# run (measured 1e-14: the print resolution); 55 % of the cell updates are
-# skipped and the run is at rest from t = 29.06 (the .output has both, so a
-# run that stops skipping fails too). The case is well conditioned: the full
-# run with the wall strain moved by one ulp agrees with it to 1e-12 as well
-# (doc/column.md, "Run time", shows cases where round-off grows to 1e-6).
+# run (measured 1e-14: the print resolution). The run comes to rest at
+# t = 29.06 and then keeps stepping without computing the steps of the
+# CFL size (those that land on the snapshot times are computed): it takes
+# the full run's 14 700 steps and writes the full run's rows of
+# timeseries.csv (time, step, dt and values) and of history.csv (every sample
+# time); 78 % of the cell updates are skipped (the .output has the fraction,
+# the steps and the time of rest, so a run that stops skipping fails too).
+# The case is well conditioned: the full run with the wall strain moved by
+# one ulp agrees with it to 1e-12 as well (doc/column.md, "Run time", shows
+# cases where round-off grows to 1e-6).
 granular_dg_test(column/skip_quiet_cells EXE ${TEST_PYTHON}
   ARGS ${CMAKE_CURRENT_SOURCE_DIR}/column/skip_agrees.py $<TARGET_FILE:granular_dg>
        ${CMAKE_CURRENT_SOURCE_DIR}/column/m15_rest.prm
+  COMPARE stdout KEEP_OUTPUT NUMDIFF -a 0 -r 0)
+
+# The same case at the largest skip tolerance allowed, 1e-14: the results
+# still agree with the full computation to 1e-12 (measured 1e-14), and the
+# run is at rest from t = 29.07.
+granular_dg_test(column/skip_largest_tolerance EXE ${TEST_PYTHON}
+  ARGS ${CMAKE_CURRENT_SOURCE_DIR}/column/skip_agrees.py $<TARGET_FILE:granular_dg>
+       ${CMAKE_CURRENT_SOURCE_DIR}/column/m15_rest.prm --skip 1e-14
+  COMPARE stdout KEEP_OUTPUT NUMDIFF -a 0 -r 0)
+
+# A larger skip tolerance is refused (exit 2, one line naming the range): at
+# 1e-6 the column to t = 300 comes to a false rest at t = 120 with a
+# velocity 20 times the full computation's (doc/engine.md).
+granular_dg_test(column/skip_tolerance_too_large PRM column/m15_rest.prm
+  ARGS --set "Time stepping/skip tolerance=1e-6" EXIT 2 KEEP_OUTPUT)
+
+# A skipping run stopped at max steps = 10000 (t = 41), while it is at rest
+# and steps of the CFL size are not computed (checkpoints every 1000 steps,
+# all in that stretch), and resumed: every file equals the uninterrupted
+# run's byte for byte (summary.json's at_rest_from, the skipped fraction and
+# the step counter included; tests/checkpoint/resume_test.py).
+granular_dg_test(column/skip_resume_at_rest EXE ${TEST_PYTHON}
+  ARGS ${CMAKE_CURRENT_SOURCE_DIR}/checkpoint/resume_test.py $<TARGET_FILE:granular_dg>
+       ${CMAKE_CURRENT_SOURCE_DIR}/column/m15_rest.prm stop:10000 --every 1000
+       --set "Time stepping/skip tolerance=1e-15"
   COMPARE stdout KEEP_OUTPUT NUMDIFF -a 0 -r 0)

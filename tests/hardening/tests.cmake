@@ -93,3 +93,17 @@ granular_dg_test(hardening/memory_report PRM ../prm/layered_2d.prm
        --set "Output/write vtu=false"
   COMPARE summary.json:diagnostics/memory/solution_bytes_per_dof,diagnostics/memory/rk_stages_bytes_per_dof,diagnostics/memory/last_good_bytes_per_dof
   NUMDIFF -r 1e-3 -a 0)
+
+# A run never removes or writes over a user's file in its output directory:
+# overwrite keeps a file the user put into OUT/checkpoints/ (it removed the
+# whole folder), and a case file named parameters.prm in its own output
+# directory is refused (it was replaced by the parameter dump).
+granular_dg_test(hardening/user_files_kept EXE ${TEST_PYTHON}
+  ARGS ${CMAKE_CURRENT_SOURCE_DIR}/hardening/user_files_kept.py $<TARGET_FILE:granular_dg>
+       ${CMAKE_CURRENT_SOURCE_DIR}/../prm/elasticity_shock.prm
+  COMPARE stdout KEEP_OUTPUT NUMDIFF -a 0 -r 0)
+# The memory refusal counts what writing a snapshot adds (DataOut's patches
+# and the file's buffers): a run that passed the check could be killed at its
+# first snapshot. The words name the format; the numbers at -r 1 as above.
+granular_dg_test(hardening/memory_does_not_fit_hdf5 PRM hardening/memory_does_not_fit.prm EXIT 2
+  ARGS --set Output/format=hdf5 KEEP_OUTPUT NUMDIFF -a 0 -r 1)

@@ -3,7 +3,8 @@
 compressive pulse that steepens into a shock, P2, 1200 cells, characteristic
 limiter) with Limiter/indicator = modal_energy (default) or kxrcf.
 
-usage: shock_cells.py EXE PRM [--indicator modal_energy|kxrcf] [--max-flagged N]
+usage: shock_cells.py EXE PRM [--indicator modal_energy|kxrcf|modal_energy_neighbours]
+                      [--threshold T] [--max-flagged N]
                       [--count flagged_cells|blended_cells] [--set ...]
 
 Prints, per output time, whether the indicator flagged some cells and no more
@@ -12,6 +13,8 @@ hundreds of troubled cells), and whether the limited solution has no
 overshoot: strain >= -0.01 (the undisturbed state is 0, the pulse is
 compressive: strain > 0) at every output time. A flagged set that missed the
 shock would leave the shock's oscillations in place. The counts go to stderr.
+The indicator runs with its automatic threshold unless --threshold T is
+given (the shipped case sets its own: prm/elasticity_shock.prm).
 With --count blended_cells the cells subcell blending acts on are counted
 instead (Limiter/subcell blending), and the largest strain of the run must
 stay within 1 % of the reference plateau 0.3567 (9600 cells) as well.
@@ -28,13 +31,16 @@ a = argparse.ArgumentParser()
 a.add_argument('exe')
 a.add_argument('prm')
 a.add_argument('--indicator', default='modal_energy')
+a.add_argument('--threshold', default='0')
 a.add_argument('--max-flagged', type=int, default=12)
 a.add_argument('--count', default='flagged_cells')
 a.add_argument('--set', action='append', default=[])
 args = a.parse_args()
 
 summary = granular_run.run(args.exe, args.prm, 'run',
-                 ['Limiter/indicator=' + args.indicator, 'Output/write vtu=false'] + args.set)
+                 ['Limiter/indicator=' + args.indicator,
+                  'Limiter/indicator threshold=' + args.threshold, 'Output/write vtu=false'] +
+                 args.set)
 with open('run/timeseries.csv') as f:
     rows = list(csv.DictReader(f))
 for r in rows[1:]:

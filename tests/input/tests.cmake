@@ -32,3 +32,8 @@ granular_dg_test(input/cfl_check_off PRM ../prm/layered_1d.prm
   ARGS --set "Time stepping/CFL number=0.25" --set "Time stepping/check stability limit=false"
        --set "Time stepping/final time=1" --set "Output/output times=" --set "Output/write vtu=false"
   COMPARE summary.json:status NUMDIFF -a 0 -r 0)
+
+# A threshold with Limiter/indicator = everywhere has no effect: the run
+# completes, with one warning line on stderr (it was silently ignored).
+granular_dg_test(input/threshold_without_indicator PRM input/threshold_without_indicator.prm
+  EXPECT_FILES out/summary.json)

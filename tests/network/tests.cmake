@@ -122,6 +122,15 @@ granular_dg_test(network/bad_vertex_value PRM ../prm/network_example_7_4.prm
   ARGS --set "Network/vertex initial value=c0" EXIT 2 KEEP_OUTPUT)
 granular_dg_test(network/bad_initial_expression PRM ../prm/network_example_7_4.prm
   ARGS --set "Network/Edge 2/initial data=1 + y" EXIT 2 KEEP_OUTPUT)
+# Skipping quiet cells is not built for the network: a skip tolerance > 0
+# is refused (it was ignored).
+granular_dg_test(network/skip_tolerance PRM ../prm/network_example_7_4.prm
+  ARGS --set "Time stepping/skip tolerance=1e-15" EXIT 2 KEEP_OUTPUT)
+# A network that cannot fit (5 edges of 2 10^9 cells) is refused before
+# anything is allocated: one line with the estimate, the memory available and
+# what to change. MemAvailable varies between runs: -r 1 on the numbers.
+granular_dg_test(network/memory_does_not_fit PRM ../prm/network_example_7_4.prm
+  ARGS --set "Network/cells per unit length=2000000000" EXIT 2 KEEP_OUTPUT NUMDIFF -a 0 -r 1)
 granular_dg_test(network/no_edges PRM ../prm/network_example_7_4.prm
   ARGS --set "Network/Edge 1/direction=none" --set "Network/Edge 2/direction=none"
        --set "Network/Edge 3/direction=none" --set "Network/Edge 4/direction=none"
@@ -174,8 +183,10 @@ granular_dg_test(network/ring_mass_dg PRM network/ring.prm ${ring_files}
        --set "Output/output times=1"
   COMPARE summary.json:diagnostics/mass_balance_residual_max,diagnostics/mass_step_residual_max NUMDIFF -a 1e-13 -r 0)
 
-# Graph validation: one line naming the file, line, edge or vertex; exit 2.
-foreach(bad duplicate_id negative_length nonfinite self_loop bad_header)
+# Graph validation: one line naming the file, line, edge or vertex; exit 2
+# (hex_id: a vertex id written 0x1 is not an integer id; isolated_vertex: a
+# vertex only the vertex file lists is blamed on that file and its line).
+foreach(bad duplicate_id negative_length nonfinite self_loop bad_header hex_id)
   granular_dg_test(network/graph_${bad} PRM network/ring.prm
     COPY network/ring_${bad}.csv network/ring_vertices.csv
     ARGS --set "Network/graph file=ring_${bad}.csv" EXIT 2 KEEP_OUTPUT)
@@ -185,6 +196,15 @@ foreach(bad missing_vertex isolated_vertex)
     COPY network/ring.csv network/ring_${bad}.csv
     ARGS --set "Network/vertex file=ring_${bad}.csv" EXIT 2 KEEP_OUTPUT)
 endforeach()
+# Graph and vertex files saved as "CSV UTF-8" (a byte-order mark, CRLF line
+# ends, no comment line) read as the plain ring: the run completes with the
+# ring's cells, vertices and final vertex values (1e-12 relative).
+granular_dg_test(network/graph_bom PRM network/ring.prm
+  COPY network/ring_bom.csv network/ring_vertices_bom.csv
+  ARGS --set "Network/graph file=ring_bom.csv" --set "Network/vertex file=ring_vertices_bom.csv"
+       --set "Time stepping/final time=1" --set "Output/output times=1"
+  COMPARE summary.json:n_cells,diagnostics/n_vertices,diagnostics/vertex_values_final
+  NUMDIFF -r 1e-12 -a 0)
 granular_dg_test(network/graph_file_and_vertex_section PRM network/ring.prm ${ring_files}
   ARGS --set "Network/Vertex 2/width factor=0" EXIT 2 KEEP_OUTPUT)
 granular_dg_test(network/edge_self_loop PRM ../prm/network_two_stars.prm
@@ -195,6 +215,26 @@ granular_dg_test(network/vertex_without_edges PRM ../prm/network_two_stars.prm
   ARGS --set "Network/Vertex 3/position=1, 1" EXIT 2 KEEP_OUTPUT)
 granular_dg_test(network/edge_unknown_vertex PRM ../prm/network_two_stars.prm
   ARGS --set "Network/Edge 3/to=9" EXIT 2 KEEP_OUTPUT)
+
+# One edge of length 1e-9 in the ring at 32 cells per unit length gets one
+# cell of width 1e-9: one warning line at set-up names the edge, the factor
+# (3.1e7) and what it does to the time step; the run goes on (to t = 1e-9).
+granular_dg_test(network/short_edge_warning PRM network/ring.prm
+  COPY network/ring_short_edge.csv network/ring_vertices.csv
+  ARGS --set "Network/graph file=ring_short_edge.csv"
+       --set "Time stepping/final time=1e-9" --set "Output/output times=1e-9"
+  EXPECT_FILES out/summary.json)
+
+# Resuming with a graph or vertex file whose content changed since the
+# checkpoint (an edge reversed with another flux law and another inflow; a
+# width factor) is refused like a changed parameter: exit 2, one line naming
+# the file; with the files restored the run resumes and completes
+# (tests/network/resume_changed_graph.py).
+granular_dg_test(network/resume_changed_graph EXE ${TEST_PYTHON}
+  ARGS ${CMAKE_CURRENT_SOURCE_DIR}/network/resume_changed_graph.py $<TARGET_FILE:granular_dg>
+       ring.prm
+  COPY network/ring.prm network/ring.csv network/ring_vertices.csv
+  COMPARE stdout KEEP_OUTPUT NUMDIFF -a 0 -r 0)
 
 # The shipped city grid (prm/network_city_grid.prm: 84 roads, 36 junctions
 # from CSV files) at 8 cells per unit length: mass conserved to round-off at

@@ -276,6 +276,13 @@ namespace granular_dg
   std::string
   checkpoint_directory(const std::string &directory);
 
+  /// Remove the checkpoint files of a run writing to directory (its
+  /// step-NNNNNNNNNN.ckpt files and their temporary files), and the folder
+  /// DIRECTORY/checkpoints if nothing else is in it: files a user put there
+  /// are kept.
+  void
+  remove_checkpoints(const std::string &directory);
+
   /// Whether DIRECTORY/checkpoints holds the temporary file of a checkpoint
   /// whose writing was cut off (ignored by resume and removed by the next
   /// checkpoint or an overwrite).

@@ -43,7 +43,9 @@ namespace granular_dg
     double        l1_error = -1; ///< sum over the components
     /// the step a resumed run started from (0: not resumed)
     unsigned long resumed_from_step = 0;
-    /// steps after which the state could not change any more (0: none)
+    /// the time from which the run was at rest to its end (Evolution::at_rest();
+    /// only steps of another size than the last were computed); -1: it
+    /// did not end at rest
     double        at_rest_from = -1;
     JsonObject    diagnostics;
   };
@@ -130,10 +132,21 @@ namespace granular_dg
     end_of_step(double /*t*/, double /*dt*/, unsigned long /*step*/)
     {}
 
-    /// True when no later step can change the state (then the loop
-    /// finishes at once, writing the remaining snapshots).
+    /// True when a step of the size of the last one would change nothing
+    /// (the last step, a CFL step of the size of the one before it, changed
+    /// nothing). A step of another size may still change the state.
     virtual bool
     at_rest() const
+    {
+      return false;
+    }
+
+    /// Count a step of size dt as taken without computing it, when that
+    /// changes nothing: at rest, and dt is the CFL step and the size of the
+    /// last step. Returns false, and does nothing, otherwise (the step must
+    /// be taken with advance()).
+    virtual bool
+    skip_step(double /*dt*/)
     {
       return false;
     }

@@ -8,6 +8,11 @@ namespace granular_dg
   void
   set_parameter_file(const std::string &filename);
 
+  /// Whether path names the parameter file of this run (the same file, by
+  /// any name): a file the run must never write over or remove.
+  bool
+  is_parameter_file(const std::string &path);
+
   /// A file named in the parameter file (a graph, a table): an absolute path
   /// as it is, a relative one relative to the parameter file's directory, so
   /// that a case and its data files move together.

@@ -51,7 +51,9 @@ namespace granular_dg
     open_timeseries();
     RunResult
     benchmark();
-    /// The steps to the final time (or until a stop or rest).
+    /// The steps to the final time (or until a stop). While the problem is
+    /// at rest, a CFL step of the size of the last one that does not land on
+    /// an output time is counted without computing it (skip_step()).
     void
     steps();
     /// dt of the next step towards t_out; sets lands when it reaches it.
@@ -62,9 +64,15 @@ namespace granular_dg
     /// Snapshot and timeseries row of the current state.
     void
     record();
-    /// The problem is at rest: the remaining snapshots, all of this state.
+    /// A step that changes nothing (Evolution::skip_step() said so): time,
+    /// step counter and the per-step diagnostics as after a computed step.
     void
-    finish_at_rest();
+    skip_step(double dt);
+    /// After a computed step: where the current stretch at rest began
+    /// (rest_from), announced once; repeats: the step had the size of the
+    /// one before it and did not land on an output time.
+    void
+    watch_rest(bool repeats);
     /// Checkpoint when due; returns true when the run stops here.
     bool
     poll();
@@ -101,6 +109,10 @@ namespace granular_dg
     std::vector<std::pair<double, std::string>> snapshots;
     /// the <Grid> elements of solution.xdmf (HDF5 output)
     std::vector<std::string> xdmf_grids;
+    /// the time from which the problem has been at rest (-1: it is not);
+    /// steps of another size than the last do not end a rest
+    double        rest_from = -1;
+    bool          rest_announced = false;
     unsigned int  n_snapshots = 0;
     double        last_record_time = -1;
     std::string   last_main_file;

@@ -105,12 +105,13 @@ namespace granular_dg
     DEAL_II_ALWAYS_INLINE inline bool
     all_lanes_compare_zero(const dealii::VectorizedArray<double, width> &x)
     {
-#if defined(__AVX512F__)
-      if constexpr (std::is_same_v<std::decay_t<decltype(x.data)>, __m512d>)
+      // (deal.II's conditions for the native specialisations of 8 and 4 lanes)
+#if DEAL_II_VECTORIZATION_WIDTH_IN_BITS >= 512 && defined(__AVX512F__)
+      if constexpr (width == 8)
         return _mm512_cmp_pd_mask(x.data, _mm512_setzero_pd(), compare_zero) == 0xFF;
 #endif
-#if defined(__AVX__)
-      if constexpr (std::is_same_v<std::decay_t<decltype(x.data)>, __m256d>)
+#if DEAL_II_VECTORIZATION_WIDTH_IN_BITS >= 256 && defined(__AVX__)
+      if constexpr (width == 4)
         return _mm256_movemask_pd(_mm256_cmp_pd(x.data, _mm256_setzero_pd(), compare_zero)) ==
                0xF;
 #endif

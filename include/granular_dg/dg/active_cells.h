@@ -17,7 +17,9 @@ namespace granular_dg::dg
    * tolerance; doc/engine.md, "Skipping quiet cells").
    *
    * A cell is quiet while none of its values has moved by more than
-   * tolerance * scale (scale: the largest |value| of the state seen so far)
+   * tolerance * scale_i (scale_i: the largest |value| of its component i seen
+   * so far in any cell, so that a small component such as a decaying
+   * velocity is measured against its own size, not against a larger one)
    * from where they were when it last moved more; a cell that moved more is
    * loud. A step computes the cells within `radius` cells of a cell that was
    * loud in the last step (radius: the reach of a whole step, its stages
@@ -32,10 +34,16 @@ namespace granular_dg::dg
    * says so); any other step computes all cells. A cell left out keeps its
    * values in every stage.
    *
-   * At rest: after a step of the CFL time step that left out every cell.
+   * At rest: the last step was a CFL step of the same size as the one before
+   * it and left out every cell. Then a further step of that size would leave
+   * out every cell again and change nothing (skip_step() counts it without
+   * computing it); a step of another size may change the state (the
+   * discrete rest state of a scheme with a stage operation such as the
+   * friction projection depends on dt) and computes every cell.
    *
-   * Cell c owns the vector entries [c n, (c + 1) n), n = values_per_cell
-   * (the line engine's numbering). Serial.
+   * Cell c owns the vector entries [c n, (c + 1) n), n = n_components
+   * n_modes, component i the n_modes entries from c n + i n_modes (the line
+   * engine's numbering). Serial.
    */
   class ActiveCells
   {
@@ -47,13 +55,18 @@ namespace granular_dg::dg
     /// steps a cell must stay quiet before it is left out
     static constexpr unsigned int patience = 1000;
 
-    ActiveCells(const unsigned int n_cells, const unsigned int values_per_cell,
-                const unsigned int radius, const bool periodic, const double tolerance)
+    ActiveCells(const unsigned int n_cells, const unsigned int n_components,
+                const unsigned int n_modes, const unsigned int radius, const bool periodic,
+                const double tolerance)
       : n_cells(n_cells)
-      , values_per_cell(values_per_cell)
+      , n_components(n_components)
+      , n_modes(n_modes)
+      , values_per_cell(n_components * n_modes)
       , radius(radius)
       , periodic(periodic)
       , tolerance(tolerance)
+      , scale(n_components, 0.)
+      , bound(n_components, 0.)
       , loud(n_cells, 1)
       , quiet_steps(n_cells, 0)
       , computed(n_cells, 1)
@@ -104,15 +117,25 @@ namespace granular_dg::dg
     {
       const double *x = u.begin();
       for (const auto &[first, end] : ranges_now)
-        for (unsigned int i = first * values_per_cell; i < end * values_per_cell; ++i)
-          scale = std::max(scale, std::abs(x[i]));
-      const double bound = tolerance * scale;
+        for (unsigned int c = first; c < end; ++c)
+          for (unsigned int i = 0; i < n_components; ++i)
+            {
+              const double *xi = x + c * values_per_cell + i * n_modes;
+              for (unsigned int k = 0; k < n_modes; ++k)
+                scale[i] = std::max(scale[i], std::abs(xi[k]));
+            }
+      for (unsigned int i = 0; i < n_components; ++i)
+        bound[i] = tolerance * scale[i];
       for (unsigned int c = 0; c < n_cells; ++c)
         {
           bool q = true;
           if (computed[c])
-            for (unsigned int i = c * values_per_cell; i < (c + 1) * values_per_cell; ++i)
-              q &= std::abs(x[i] - reference[i]) <= bound;
+            for (unsigned int i = 0; i < n_components; ++i)
+              {
+                const std::size_t j = std::size_t(c) * values_per_cell + i * n_modes;
+                for (unsigned int k = 0; k < n_modes; ++k)
+                  q &= std::abs(x[j + k] - reference[j + k]) <= bound[i];
+              }
           loud[c] = !q;
           if (q)
             quiet_steps[c] = std::min(quiet_steps[c] + 1, patience);
@@ -158,6 +181,7 @@ namespace granular_dg::dg
       r.io(quiet_steps);
       r.io(reference);
       AssertThrow(loud.size() == n_cells && quiet_steps.size() == n_cells &&
+                    scale.size() == n_components &&
                     reference.size() == std::size_t(n_cells) * values_per_cell,
                   dealii::ExcMessage("checkpoint of the skipped cells does not fit the mesh"));
       std::fill(computed.begin(), computed.end(), 1);
@@ -186,15 +210,30 @@ namespace granular_dg::dg
       return computed[cell];
     }
 
-    /// After a step of the CFL time step that left out every cell: no later
-    /// step would compute any.
+    /// After a CFL step that left out every cell (it had the size of the
+    /// step before it, or it would have computed all): a step of that size
+    /// from this state leaves out every cell again.
     bool
     at_rest() const
     {
       return known && last_cfl_step && ranges_now.empty();
     }
 
-    /// Cell updates left out over all steps so far, of all cell updates.
+    /// Count a step of size dt that needs no computation: at rest, and dt is
+    /// the size of the last step (a step that would leave out every cell and
+    /// keep every value; what is known stays as it is). Returns false, and
+    /// counts nothing, for any other step: that one must be computed.
+    bool
+    skip_step(const double dt)
+    {
+      if (!at_rest() || dt != last_dt)
+        return false;
+      n_updates += n_cells;
+      return true;
+    }
+
+    /// Cell updates left out over all steps so far, of all cell updates (a
+    /// step skip_step() counted left out every cell).
     double
     skipped_fraction() const
     {
@@ -241,9 +280,11 @@ namespace granular_dg::dg
         }
     }
 
-    const unsigned int         n_cells, values_per_cell, radius;
+    const unsigned int         n_cells, n_components, n_modes, values_per_cell, radius;
     const bool                 periodic;
     const double               tolerance;
+    /// per component: the largest |value| seen so far, and tolerance times it
+    std::vector<double>        scale, bound;
     std::vector<unsigned char> loud;
     std::vector<unsigned int>  quiet_steps;
     std::vector<unsigned char> computed, computed_before;
@@ -251,7 +292,7 @@ namespace granular_dg::dg
     std::vector<double>        reference;
     std::vector<Range>         ranges_now, newly_left_out;
     bool                       known = false, last_cfl_step = false;
-    double                     last_dt = 0, scale = 0;
+    double                     last_dt = 0;
     double                     n_computed = 0, n_updates = 0;
   };
 

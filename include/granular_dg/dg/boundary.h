@@ -23,14 +23,21 @@ namespace granular_dg::dg
   {
     outflow,   ///< transmissive: what leaves leaves (the physics says how)
     dirichlet, ///< U_p = g
-    wall       ///< mirror state of a wall moving with the velocity in g
+    wall,      ///< mirror state of a wall moving with the velocity in g
+    /// the kinds a physics declares (physics_boundary_kind()), named here so
+    /// that a switch over a physics' kinds lists enumerators
+    physics_0 = 16,
+    physics_1,
+    physics_2,
+    physics_3
   };
 
-  /// The i-th boundary kind of a physics (distinct from the generic ones).
+  /// The i-th boundary kind of a physics (distinct from the generic ones),
+  /// i < 4.
   constexpr BoundaryKind
   physics_boundary_kind(const unsigned int i)
   {
-    return static_cast<BoundaryKind>(16 + i);
+    return static_cast<BoundaryKind>(static_cast<unsigned int>(BoundaryKind::physics_0) + i);
   }
 
   template <int dim>

@@ -28,12 +28,14 @@ namespace granular_dg::dg
   };
 
   /// Which cells the limiter examines: every cell (the TVB test alone), or
-  /// the cells a smoothness indicator flags (Limiter/indicator).
+  /// the cells a smoothness indicator flags (Limiter/indicator), or those
+  /// and their face neighbours (modal_energy_neighbours).
   enum class TroubleIndicator
   {
     everywhere,
     modal_energy,
-    kxrcf
+    kxrcf,
+    modal_energy_neighbours
   };
 
   /// The threshold of the modal-energy indicator for degree p (Hennemann,
@@ -137,6 +139,15 @@ namespace granular_dg::dg
    * small mean (Trixi's second ratio, e_{p-1} / sum_{k<p} e_k, would be,
    * for variables that change sign).
    *
+   * The mean also makes E depend on the level of the variable: a cell is
+   * flagged when its top mode exceeds sqrt(T) of its own level, so of the
+   * cells of a shock from 0 up to a level a only the one at its foot (mean
+   * near 0) is, and the cells above it (means near a) may overshoot. With
+   * modal_energy_neighbours the limiter examines the cells modal_energy
+   * flags and their face neighbours (as subcell blending spreads its factor
+   * to the neighbours). The flags of all cells, ghost neighbours included,
+   * are computed from the unlimited state first.
+   *
    * With the kxrcf indicator (Krivodonova, Xin, Remacle, Chevaugeon &
    * Flaherty 2004) a cell is flagged when the jumps of its indicator
    * variable across its faces are large for a smooth solution:
@@ -178,12 +189,14 @@ namespace granular_dg::dg
     apply(VectorType &solution, double t = 0., const ActiveCells *active = nullptr) const;
 
     /// Examine only the cells the indicator flags (threshold 0: the
-    /// automatic modal_energy_threshold() of the degree, 1 for kxrcf).
+    /// automatic modal_energy_threshold() of the degree, 1 for kxrcf), and
+    /// their neighbours with modal_energy_neighbours.
     void
     set_indicator(TroubleIndicator indicator, double threshold = 0.);
 
-    /// Cells the indicator flagged in the last apply() (all examined cells
-    /// with TroubleIndicator::everywhere), on this rank.
+    /// Cells the limiter examined in the last apply(): those the indicator
+    /// flagged (and their neighbours with modal_energy_neighbours; all
+    /// cells with TroubleIndicator::everywhere), on this rank.
     unsigned int
     n_flagged() const
     {
@@ -231,7 +244,7 @@ namespace granular_dg::dg
     {
       return cells.memory_consumption() + coefficients.capacity() * sizeof(coefficients[0]) +
              faces.capacity() * sizeof(Face) + base.capacity() * sizeof(std::size_t) +
-             troubled.capacity() + kxrcf_flags.capacity() +
+             troubled.capacity() + examined.capacity() + modal_flags.capacity() +
              limiting_values.capacity() * sizeof(State);
     }
 
@@ -391,8 +404,12 @@ namespace granular_dg::dg
     mutable double   indicator_floor = 0.;
 
     mutable std::vector<unsigned char> troubled;
-    /// kxrcf: the flags of the current apply(), per owned cell
-    mutable std::vector<unsigned char> kxrcf_flags;
+    /// kxrcf and modal_energy_neighbours: whether the current apply()
+    /// examines owned cell i, decided before any cell is limited
+    mutable std::vector<unsigned char> examined;
+    /// modal_energy_neighbours: the modal_energy flag of every cell (owned
+    /// and ghost) in the current apply()
+    mutable std::vector<unsigned char> modal_flags;
     mutable unsigned int               flagged = 0;
     /// the (ghosted) solution of the current apply(), for the averages
     mutable const double *averages = nullptr;

@@ -589,12 +589,12 @@ namespace granular_dg::dg
   ModalLimiter<dim, Physics>::limit_cell(const unsigned int i, double *x) const
   {
     if ((indicator == TroubleIndicator::modal_energy && !indicated<n1>(x)) ||
-        (indicator == TroubleIndicator::kxrcf && !kxrcf_flags[i]))
+        ((indicator == TroubleIndicator::kxrcf ||
+          indicator == TroubleIndicator::modal_energy_neighbours) &&
+         !examined[i]))
       return false;
     ++flagged;
-    constexpr unsigned int nc      = n_components;
-    constexpr unsigned int n_modes = dim == 1 ? n1 : n1 * n1;
-    const State            avg     = average(i);
+    const State avg = average(i);
     // per direction: jumps to the faces and the slope, in the variables the
     // limiter works on (components or characteristic fields), and the
     // neighbour differences; the limited slopes only for a troubled cell
@@ -677,10 +677,31 @@ namespace granular_dg::dg
       {
         // all flags from the unlimited state: limiting a cell changes the
         // traces its neighbours see
-        kxrcf_flags.resize(cells.n_owned());
+        examined.resize(cells.n_owned());
         for_active_ranges(active, cells.n_owned(), [&](const unsigned int first, const unsigned int end) {
           for (unsigned int i = first; i < end; ++i)
-            kxrcf_flags[i] = kxrcf_indicated<n1>(i);
+            examined[i] = kxrcf_indicated<n1>(i);
+        });
+      }
+    if (indicator == TroubleIndicator::modal_energy_neighbours)
+      {
+        // the flags of all cells (ghost neighbours too) from the unlimited
+        // state, then a cell is examined if it or a face neighbour is flagged
+        modal_flags.resize(cells.n_cells());
+        for (unsigned int c = 0; c < cells.n_cells(); ++c)
+          modal_flags[c] = indicated<n1>(averages + base[c]);
+        examined.resize(cells.n_owned());
+        for_active_ranges(active, cells.n_owned(), [&](const unsigned int first, const unsigned int end) {
+          for (unsigned int i = first; i < end; ++i)
+            {
+              examined[i] = modal_flags[i];
+              for (unsigned int f = 0; f < 2 * dim; ++f)
+                {
+                  const int neighbor = faces[i * 2 * dim + f].neighbor;
+                  if (neighbor >= 0 && modal_flags[neighbor])
+                    examined[i] = 1;
+                }
+            }
         });
       }
     // in 1D with every cell examined, the TVB test runs on SIMD batches of
@@ -689,17 +710,19 @@ namespace granular_dg::dg
     const auto limit_range = [&](const unsigned int first, const unsigned int end) {
       unsigned int i = first;
       if (batches)
-        while (i + batch_width <= end)
-          if (batch_fits(i, end))
-            {
-              limit_batch<n1>(i, u_data);
-              i += batch_width;
-            }
-          else
-            {
-              troubled[i] = limit_cell<n1>(i, u_data + base[i]);
-              ++i;
-            }
+        {
+          while (i + batch_width <= end)
+            if (batch_fits(i, end))
+              {
+                limit_batch<n1>(i, u_data);
+                i += batch_width;
+              }
+            else
+              {
+                troubled[i] = limit_cell<n1>(i, u_data + base[i]);
+                ++i;
+              }
+        }
       for (; i < end; ++i)
         troubled[i] = limit_cell<n1>(i, u_data + base[i]);
     };

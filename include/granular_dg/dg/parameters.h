@@ -30,6 +30,10 @@ namespace granular_dg::dg
     bool         check_stability_limit = true;
     /// Time stepping/skip tolerance (ActiveCells); 0: compute every cell
     double       skip_tolerance        = 0.;
+    /// the largest skip tolerance allowed: up to it the results agree with
+    /// the full computation to 1e-12 of each component's largest value
+    /// (doc/engine.md, "Skipping quiet cells")
+    static constexpr double max_skip_tolerance = 1e-14;
     LimiterType  limiter      = LimiterType::none;
     std::string  limiter_name = "none";
     double       tvb_M        = 0.;
@@ -64,18 +68,16 @@ namespace granular_dg::dg
   snapshot_bytes(double n_cells, unsigned int degree, int dim, unsigned int n_fields,
                  bool vtu);
 
-  /// Bytes per DoF of a DG run, measured on the 2D strip at 10.8 M DoFs
-  /// (P2, all vectors, MatrixFree data, DoFHandler and mesh; doc/performance.md).
-  inline constexpr double bytes_per_dof = 134.;
-
   /// An InputError naming parameter (= value) when a mesh of n_cells cells
   /// of degree p with n_components unknowns needs more memory than this MPI
-  /// rank has (available_memory_per_rank()): refused before anything is
-  /// allocated; change says what to change.
+  /// rank has (available_memory_per_rank()), writing snapshots (Output/write
+  /// vtu, Output/format of run) included: refused before anything is
+  /// allocated; change says what to change. The bytes per DoF are measured
+  /// (doc/program.md, "Memory").
   void
-  require_memory_fits(double n_cells, unsigned int degree, int dim, unsigned int n_components,
-                      const std::string &parameter, const std::string &value,
-                      const std::string &change);
+  require_memory_fits(const RunParameters &run, double n_cells, unsigned int degree, int dim,
+                      unsigned int n_components, const std::string &parameter,
+                      const std::string &value, const std::string &change);
 
   /// The name of a scheme in Time stepping/scheme.
   std::string

@@ -48,7 +48,9 @@ namespace granular_dg::dg
     /// Set before initialize() when the run skips quiet cells (ActiveCells;
     /// null otherwise): post_stage() and post_limiter() then work on the
     /// cells of active_cells()->ranges() only, and end_of_step() may look at
-    /// those only, since no other cell changed.
+    /// those only, since no other cell changed. At rest, end_of_step() also
+    /// follows the steps that are counted but not computed (no cell in
+    /// ranges()), so that per-step diagnostics see every step.
     void
     set_active_cells(const ActiveCells *cells)
     {
@@ -278,15 +280,16 @@ namespace granular_dg::dg
   template <int dim, typename Physics>
   struct SceneData
   {
-    std::string                         scene;
+    // (every member but the physics has a default: a scene names what it sets)
+    std::string                         scene = {};
     Physics                             physics;
-    std::shared_ptr<Triangulation<dim>> triangulation;
-    BoundaryMap<dim>                    boundary;
-    std::shared_ptr<Function<dim>>      initial;
-    std::shared_ptr<Function<dim>>      exact;
+    std::shared_ptr<Triangulation<dim>> triangulation = {};
+    BoundaryMap<dim>                    boundary      = {};
+    std::shared_ptr<Function<dim>>      initial       = {};
+    std::shared_ptr<Function<dim>>      exact         = {};
     /// the scene's stage operations and diagnostics, called in this order
     /// (e.g. a friction projection, then the diagnostics that read it)
-    std::vector<std::shared_ptr<SceneHooks<dim>>> hooks;
+    std::vector<std::shared_ptr<SceneHooks<dim>>> hooks = {};
     /// the time step uses max(lambda_max(U), this) as wave speed: for states
     /// at rest whose speed is 0 (sigma'(0) = 0), the speed the scene will reach
     double                              min_wave_speed = 0.;
@@ -300,6 +303,6 @@ namespace granular_dg::dg
     /// of the same discretisation, e.g. the final state of an earlier run);
     /// without it the initial Function is projected
     double                              start_time = 0.;
-    std::shared_ptr<const VectorType>   initial_vector;
+    std::shared_ptr<const VectorType>   initial_vector = {};
   };
 } // namespace granular_dg::dg

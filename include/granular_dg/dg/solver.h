@@ -68,6 +68,8 @@ namespace granular_dg::dg
     finish(double t, RunResult &result, bool write_files) override;
     bool
     at_rest() const override;
+    bool
+    skip_step(double dt) override;
     void
     set_phases(StepPhases *p) override
     {

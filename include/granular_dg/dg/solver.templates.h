@@ -134,8 +134,8 @@ namespace granular_dg::dg
         const unsigned int reach =
           SSPRK3<>::n_stages * (method.limiter == LimiterType::none ? 1 : 2);
         const auto        &layout = limiter.layout();
-        active = std::make_unique<ActiveCells>(layout.n_owned(),
-                                               Physics::n_components * layout.n_modes(), reach,
+        active = std::make_unique<ActiveCells>(layout.n_owned(), Physics::n_components,
+                                               layout.n_modes(), reach,
                                                layout.n_owned() > 1 && layout.neighbor(0, 0) >= 0,
                                                method.skip_tolerance);
         AssertThrow(op->restrict_to(active.get()), ExcInternalError());
@@ -339,6 +339,13 @@ namespace granular_dg::dg
   Solver<dim, Physics>::at_rest() const
   {
     return active && active->at_rest();
+  }
+
+  template <int dim, typename Physics>
+  bool
+  Solver<dim, Physics>::skip_step(const double dt)
+  {
+    return active && dt == cfl_step && active->skip_step(dt);
   }
 
   template <int dim, typename Physics>
@@ -637,7 +644,7 @@ namespace granular_dg::dg
     std::string grid;
     if (Utilities::MPI::this_mpi_process(comm) == 0)
       {
-        grid = entry.get_xdmf_content(3);
+        grid = entry.get_xdmf_content(3, ReferenceCells::get_hypercube<dim>());
         record_output_file(directory, name);
       }
     return Utilities::MPI::broadcast(comm, grid, 0);

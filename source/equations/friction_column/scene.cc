@@ -71,7 +71,7 @@ namespace granular_dg::column
       if (common.convergence)
         require(p.closed_form, "Diagnostics/closed form", "false",
                 "true: a convergence study needs the exact solution");
-      dg::require_memory_fits(p.cells, method.degree, 1, System::n_components, "Mesh/cells",
+      dg::require_memory_fits(common, p.cells, method.degree, 1, System::n_components, "Mesh/cells",
                               std::to_string(p.cells), "use fewer cells or a lower degree");
       require_reasonable_snapshot_count(
         common, dg::snapshot_bytes(p.cells, method.degree, 1, 7, common.write_vtu));

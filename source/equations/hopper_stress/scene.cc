@@ -149,7 +149,7 @@ namespace granular_dg::hopper
       const Transition transition(*upper, p.material, p.theta_w);
       const auto       check = transition.check(20001);
 
-      dg::require_memory_fits(p.cells, method.degree, 1, System::n_components, "Hopper/cells",
+      dg::require_memory_fits(common, p.cells, method.degree, 1, System::n_components, "Hopper/cells",
                               std::to_string(p.cells), "use fewer cells or a lower degree");
       const System physics(p.geometry, p.variables, p.material,
                            numerical_flux_names.parse("Discretization/numerical flux",

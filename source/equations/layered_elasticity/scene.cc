@@ -392,7 +392,7 @@ namespace granular_dg::elasticity
         const dg::DiscretizationParameters &method)
     {
       if (!common.convergence)
-        dg::require_memory_fits(double(p.cells[0]) * (dim == 2 ? p.cells[1] : 1), method.degree,
+        dg::require_memory_fits(common, double(p.cells[0]) * (dim == 2 ? p.cells[1] : 1), method.degree,
                                 dim, System<dim>::n_components, "Mesh/cells x",
                                 std::to_string(p.cells[0]) +
                                   (dim == 2 ? " (cells y = " + std::to_string(p.cells[1]) + ")" :

@@ -5,6 +5,7 @@
 
 #include <deal.II/base/function.h>
 
+#include <granular_dg/base/checkpoint.h>
 #include <granular_dg/base/errors.h>
 #include <granular_dg/base/input_path.h>
 #include <granular_dg/base/parameters.h>
@@ -48,10 +49,13 @@ namespace granular_dg::network
       return a == std::string::npos ? "" : s.substr(a, b - a + 1);
     }
 
-    /// s as a double, if all of it is one
+    /// s as a double, if all of it is one in decimal notation (std::stod's
+    /// hexadecimal numbers such as 0x1 are not numbers here)
     std::optional<double>
     as_number(const std::string &s)
     {
+      if (s.find_first_of("xX") != std::string::npos)
+        return {};
       try
         {
           std::size_t end = 0;
@@ -171,6 +175,8 @@ namespace granular_dg::network
     {
       std::map<std::string, unsigned int>                          column;
       std::vector<std::pair<unsigned int, std::vector<std::string>>> rows;
+      /// FNV-1a of the file's bytes (what a checkpoint compares)
+      std::uint64_t                                                content_hash = 0;
 
       /// the field of a column ("" if the file has no such column or the row ends before)
       std::string
@@ -190,12 +196,20 @@ namespace granular_dg::network
       require(static_cast<bool>(in), parameter, file,
               "a readable CSV file (relative paths are relative to the parameter file: " + path +
                 ")");
-      CsvTable     table;
-      std::string  line;
-      unsigned int number = 0;
-      while (std::getline(in, line))
+      std::ostringstream content;
+      content << in.rdbuf();
+      CsvTable table;
+      table.content_hash = fnv1a(content.str());
+      std::istringstream lines(content.str());
+      std::string        line;
+      unsigned int       number = 0;
+      while (std::getline(lines, line))
         {
           ++number;
+          // a spreadsheet's "CSV UTF-8" starts with a byte-order mark (and
+          // trim() takes the \r of CRLF line ends)
+          if (number == 1 && line.rfind("\xEF\xBB\xBF", 0) == 0)
+            line.erase(0, 3);
           if (trim(line).empty() || trim(line)[0] == '#')
             continue;
           std::vector<std::string> fields;
@@ -341,7 +355,8 @@ namespace granular_dg::network
           }
         read_edge_file("Network/graph file", edge_file);
         if (!vertex_file.empty())
-          read_vertex_file("Network/vertex file", vertex_file);
+          read_vertex_file("Network/vertex file", vertex_file,
+                           "Network/graph file '" + edge_file + "'");
       }
     // the Network-wide defaults of the vertices
     value_given.resize(graph.vertices.size(), false);
@@ -378,6 +393,7 @@ namespace granular_dg::network
                                     {"id", "from", "to", "length", "flux", "parameter",
                                      "initial", "far_end", "far_end_data"},
                                     5);
+    graph.files.push_back({parameter, file, table.content_hash});
     // vertex ids as written -> indices, in increasing order of the ids
     std::map<long, unsigned int> index;
     auto vertex_id = [&](const std::string &text, const std::string &where) -> long {
@@ -441,10 +457,12 @@ namespace granular_dg::network
   }
 
   void
-  GraphInput::read_vertex_file(const std::string &parameter, const std::string &file)
+  GraphInput::read_vertex_file(const std::string &parameter, const std::string &file,
+                               const std::string &edges)
   {
     const CsvTable table =
       read_csv(parameter, file, {"id", "x", "y", "width_factor", "initial_value"}, 3);
+    graph.files.push_back({parameter, file, table.content_hash});
     std::map<long, unsigned int> index;
     for (unsigned int i = 0; i < vertex_ids.size(); ++i)
       index[vertex_ids[i]] = i;
@@ -453,23 +471,18 @@ namespace granular_dg::network
     for (const auto &[line, row] : table.rows)
       {
         const std::string at = parameter + " '" + file + "', line " + std::to_string(line) + ": ";
-        const double      x  = csv_number(table.get(row, "id"), at, "id");
-        require(x == std::floor(x), at + "id", x, "an integer vertex id");
-        const long id = static_cast<long>(x);
+        const std::string text = table.get(row, "id");
+        const auto        x    = as_number(text);
+        require(x && *x == std::floor(*x) && std::abs(*x) < 1e15, at + "id", text,
+                "an integer vertex id");
+        const long id = static_cast<long>(*x);
         const auto [first, unique] = seen.emplace(id, line);
         require(unique, at + "id", id,
                 "a unique vertex id (line " + std::to_string(first->second) + " has it too)");
-        auto it = index.find(id);
-        if (it == index.end())
-          {
-            // a vertex no edge names: validate() reports it
-            Vertex v;
-            v.label        = "Vertex " + std::to_string(id);
-            v.width_factor = NAN;
-            graph.vertices.push_back(v);
-            value_given.push_back(false);
-            it = index.emplace(id, graph.vertices.size() - 1).first;
-          }
+        const auto it = index.find(id);
+        require(it != index.end(), at + "id", id,
+                "a vertex that an edge of " + edges + " names (Vertex " + std::to_string(id) +
+                  " has no edges; every vertex needs at least one)");
         Vertex &v  = graph.vertices[it->second];
         v.position = Point<2>(csv_number(table.get(row, "x"), at, "x"),
                               csv_number(table.get(row, "y"), at, "y"));

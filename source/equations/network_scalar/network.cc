@@ -1023,8 +1023,21 @@ namespace granular_dg::network
   NetworkProblem::state_io(Archive &ar, std::vector<double> &vertices,
                            std::vector<std::vector<double>> &modes, double &total_inflow)
   {
-    // the graph's size first: a graph file changed since the checkpoint
-    // (the parameters name the file, not its content) is refused
+    // the graph's files first: the parameters name a graph file, not its
+    // content, so a file changed since the checkpoint is refused here like
+    // a changed parameter (the content hash of each file, in the order read)
+    std::vector<std::pair<std::string, std::uint64_t>> files;
+    for (const GraphFile &f : net.files)
+      files.emplace_back(f.parameter, f.content_hash);
+    auto stored = files;
+    ar.io(stored);
+    for (unsigned int i = 0; i < files.size(); ++i)
+      if (i >= stored.size() || stored[i] != files[i])
+        throw InputError("cannot resume from the checkpoint: " + net.files[i].parameter + " '" +
+                         net.files[i].name +
+                         "' changed since the checkpoint was written (its content differs "
+                         "from the run's; a resumed run needs the files it started with)");
+    // then the graph's size
     std::uint64_t n_vertices = vertices.size(), n_edges = modes.size();
     ar.io(n_vertices);
     ar.io(n_edges);

@@ -9,6 +9,7 @@
 
 #include <deal.II/base/mpi.h>
 
+#include <granular_dg/base/output.h>
 #include <granular_dg/base/parameters.h>
 #include <granular_dg/base/run_parameters.h>
 #include <granular_dg/base/scene.h>
@@ -19,7 +20,9 @@
 #include <granular_dg/equations/network_scalar/network.h>
 #include <granular_dg/equations/network_scalar/system.h>
 
+#include <algorithm>
 #include <cmath>
+#include <iostream>
 
 namespace granular_dg::network
 {
@@ -200,6 +203,129 @@ namespace granular_dg::network
         }
     }
 
+    /// Memory of a network run, measured as peak RSS (2026-12, doc/network.md
+    /// "At set-up"): per edge its Triangulation, DoFHandler, operator and limiter
+    /// (a grid of 10224 edges of one cell); per cell the mesh, DoF and
+    /// operator data with their set-up peak (one edge of 10^6 and 2 10^6
+    /// cells) and per mode the state vectors (degree 2 against 0); per
+    /// sample point of a snapshot on rank 0 the gathered samples and the
+    /// VTU's patches, or the profiles alone.
+    constexpr double bytes_per_edge          = 32e3;
+    constexpr double bytes_per_cell          = 340.;
+    constexpr double bytes_per_mode          = 12.;
+    constexpr double vtu_bytes_per_point     = 270.;
+    constexpr double profile_bytes_per_point = 16.;
+
+    /// The cells of every edge at `cells` per unit length, as NetworkProblem
+    /// makes them (round(L * cells), at least one), in double: counted
+    /// before anything is allocated, without overflow.
+    std::vector<double>
+    edge_cells(const Graph &graph, const double cells)
+    {
+      std::vector<double> n;
+      for (const Edge &e : graph.edges)
+        n.push_back(std::max(1., std::round(e.length * cells)));
+      return n;
+    }
+
+    /// An InputError when the network needs more memory than this MPI rank
+    /// has (available_memory_per_rank()), refused before anything is
+    /// allocated as the other scenes' meshes are: the edges and cells of a
+    /// rank (at least the longest edge: the partition keeps edges whole) and,
+    /// on rank 0, a snapshot of the whole network. It names the number of
+    /// cells per unit length (of a convergence study: Convergence/cells), or
+    /// the graph file when its edges take most of the memory.
+    void
+    require_network_fits(const Case &c, const RunParameters &common)
+    {
+      const bool study = common.convergence;
+      const std::vector<unsigned int> degrees =
+        study ? common.convergence_degrees : std::vector<unsigned int>{c.disc.degree};
+      const double cells =
+        study ? double(*std::max_element(common.convergence_cells.begin(),
+                                         common.convergence_cells.end())) :
+                c.disc.cells_per_unit_length;
+      const unsigned int degree = *std::max_element(degrees.begin(), degrees.end());
+      const auto         n      = edge_cells(c.input.graph, cells);
+      double             total  = 0;
+      for (const double x : n)
+        total += x;
+      const double ranks = Utilities::MPI::job_supports_mpi() ?
+                             Utilities::MPI::n_mpi_processes(MPI_COMM_WORLD) :
+                             1.;
+      const double per_cell   = bytes_per_cell + bytes_per_mode * (degree + 1);
+      const double edge_bytes = std::ceil(n.size() / ranks) * bytes_per_edge;
+      const double cell_bytes =
+        std::max(total / ranks, *std::max_element(n.begin(), n.end())) * per_cell;
+      const bool   snapshots  = !study && !common.benchmark.enabled &&
+                             (c.disc.write_vtu || c.disc.profiles != Profiles::none);
+      const double points     = c.disc.profile_points > 0 ? std::max(2u, c.disc.profile_points) :
+                                                            std::max(2u, degree + 1);
+      const double snapshot_bytes =
+        !snapshots ? 0. :
+                     total * points *
+                       ((c.disc.write_vtu ? vtu_bytes_per_point : 0.) +
+                        (c.disc.profiles != Profiles::none ? profile_bytes_per_point : 0.));
+      const double needed = edge_bytes + cell_bytes + snapshot_bytes;
+      // the smallest over the ranks: they all refuse, or none
+      const double available = Utilities::MPI::job_supports_mpi() ?
+                                 Utilities::MPI::min(available_memory_per_rank(), MPI_COMM_WORLD) :
+                                 available_memory_per_rank();
+      if (available <= 0. || needed <= available)
+        return;
+      const auto &files    = c.input.graph.files;
+      const bool  by_edges = edge_bytes > cell_bytes && !files.empty();
+      require(false,
+              by_edges ? files.front().parameter :
+              study    ? std::string("Convergence/cells") :
+                         std::string("Network/cells per unit length"),
+              by_edges ? files.front().name : format_number(cells),
+              "the run needs about " + format_bytes(needed) + " per MPI rank (" +
+                format_number(n.size()) + " edges at ~" + format_bytes(bytes_per_edge) +
+                " each, " + format_number(total) + " cells of degree " +
+                std::to_string(degree) + " at ~" + format_number(per_cell) + " bytes each" +
+                (snapshots ? std::string(", snapshots included") : std::string()) +
+                "), more than the " + format_bytes(available) +
+                " available (MemAvailable): use fewer cells per unit length, fewer edges or a "
+                "lower degree, or run on more machines (MPI ranks)");
+    }
+
+    /// One warning line on stderr (rank 0) when an edge is so short that its
+    /// cells are over 10 times narrower than 1 / (cells per unit length): the
+    /// CFL step follows the narrowest cell, so the whole network steps that
+    /// much more often (an edge shorter than half a cell gets one cell of its
+    /// length).
+    void
+    warn_of_short_edges(const Case &c, const double cells)
+    {
+      const Graph &graph = c.input.graph;
+      const auto   n     = edge_cells(graph, cells);
+      const double dx    = 1. / cells;
+      unsigned int narrowest = 0, count = 0;
+      for (unsigned int k = 0; k < n.size(); ++k)
+        {
+          const double h = graph.edges[k].length / n[k];
+          if (h < 0.1 * dx)
+            ++count;
+          if (h < graph.edges[narrowest].length / n[narrowest])
+            narrowest = k;
+        }
+      if (count == 0 || Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) != 0)
+        return;
+      const Edge  &e = graph.edges[narrowest];
+      const double h = e.length / n[narrowest];
+      std::cerr << "granular_dg: warning: " << e.label << " (" << c.input.where[narrowest]
+                << "length = " << format_number(e.length) << ") has cells of width "
+                << format_number(h) << ", " << format_number(dx / h)
+                << " times narrower than 1/(Network/cells per unit length) = "
+                << format_number(dx) << ": the time step of the whole network shrinks by "
+                << "that factor"
+                << (count > 1 ? " (" + std::to_string(count - 1) +
+                                  " more edges are over 10 times narrower too)" :
+                                std::string())
+                << std::endl;
+    }
+
     void
     Case::parse(ParameterHandler &prm, const RunParameters &common,
                 const dg::DiscretizationParameters &method)
@@ -212,6 +338,9 @@ namespace granular_dg::network
               dg::time_scheme_name(method.scheme),
               "ssp_rk3 (the network's vertex coupling runs with Euler or SSP-RK3 stages; "
               "Time stepping/integrator chooses between them)");
+      require(method.skip_tolerance == 0, "Time stepping/skip tolerance", method.skip_tolerance,
+              "0 here: the network computes every cell of every edge in every step (skipping "
+              "quiet cells is built in the DG solver of the 1D scenes, not for the network)");
       Case &c = *this;
       c.disc.degree         = method.degree;
       c.disc.flux           = numerical_flux_names.parse("Discretization/numerical flux",
@@ -243,6 +372,8 @@ namespace granular_dg::network
       const std::string exact_name = prm.get("exact solution");
       c.input.parse(prm);
       prm.leave_subsection();
+      // before any edge is discretised (below for initial_data, then by run())
+      require_network_fits(c, common);
 
       if (exact_name == "initial_data")
         {
@@ -281,6 +412,11 @@ namespace granular_dg::network
       if (common.convergence)
         require(static_cast<bool>(c.exact), "Network/exact solution", "none",
                 "an exact solution: a convergence study measures errors");
+      // a study: its finest level, which costs the most
+      warn_of_short_edges(c, common.convergence ?
+                               double(*std::max_element(common.convergence_cells.begin(),
+                                                        common.convergence_cells.end())) :
+                               c.disc.cells_per_unit_length);
       {
         NetworkProblem probe(c.input.graph, c.disc, c.input.data, c.exact.get());
         require_reasonable_snapshot_count(common, probe.info().bytes_per_snapshot);

@@ -96,7 +96,7 @@ namespace granular_dg::skeleton
     run(const SkeletonParameters &p, const RunParameters &common,
         const dg::DiscretizationParameters &method)
     {
-      dg::require_memory_fits(std::pow(double(p.cells), dim), method.degree, dim,
+      dg::require_memory_fits(common, std::pow(double(p.cells), dim), method.degree, dim,
                               System<dim>::n_components, "Mesh/cells", std::to_string(p.cells),
                               "use fewer cells or a lower degree");
       // build (and so validate) everything before anything is written

@@ -5,6 +5,7 @@
 
 #include <granular_dg/equations/network_scalar/system.h>
 
+#include <cstdint>
 #include <optional>
 #include <string>
 #include <vector>
@@ -82,12 +83,24 @@ namespace granular_dg::network
     bool         incoming;
   };
 
+  /// A file a graph was read from (Network/graph file, vertex file) and the
+  /// FNV-1a hash of its bytes: a checkpoint stores it, and resuming with a
+  /// file whose content changed since is refused.
+  struct GraphFile
+  {
+    std::string   parameter; ///< "Network/graph file"
+    std::string   name;      ///< as the parameter gives it
+    std::uint64_t content_hash = 0;
+  };
+
   /// A directed graph: edges between vertices or free ends. The paper's star
   /// graph is the graph with one vertex.
   struct Graph
   {
     std::vector<Vertex> vertices;
     std::vector<Edge>   edges;
+    /// the files it was read from (none: the prm's sections)
+    std::vector<GraphFile> files;
 
     /// The edge ends at vertex v (a loop gives two); their number is the
     /// paper's N in the vertex width dx_0 = N dx / 2.

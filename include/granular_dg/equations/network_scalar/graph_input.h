@@ -48,8 +48,11 @@ namespace granular_dg::network
     std::vector<long> vertex_ids;
     void
     read_edge_file(const std::string &parameter, const std::string &file);
+    /// edges: the graph file as messages name it ("Network/graph file
+    /// 'grid.csv'"); a vertex that no edge names is refused at its line
     void
-    read_vertex_file(const std::string &parameter, const std::string &file);
+    read_vertex_file(const std::string &parameter, const std::string &file,
+                     const std::string &edges);
   };
 
   /// The largest number N of the Network/Edge N and Vertex N subsections.
