@@ -114,7 +114,7 @@ namespace
   /// Whether an MPI launcher (mpirun, srun) started this process: its rank
   /// in the launcher's environment, "" if there is none.
   std::string
-  launcher_rank()
+  mpi_launcher_rank()
   {
     for (const char *name : {"OMPI_COMM_WORLD_RANK", "PMIX_RANK", "PMI_RANK"})
       if (const char *rank = std::getenv(name))
@@ -202,7 +202,7 @@ main(int argc, char **argv)
   // start-up, but then a SIGINT near the end of a run made Open MPI print
   // lines of its own beside the one-line report: not set here;
   // doc/performance.md, "Build and start-up".)
-  const std::string                               rank = launcher_rank();
+  const std::string                               rank = mpi_launcher_rank();
   bool                                            root = rank.empty() || rank == "0";
   std::optional<Utilities::MPI::MPI_InitFinalize> mpi;
   try
