@@ -116,7 +116,7 @@ namespace
       for (const double b : v)
         for (const double c : v)
           for (const double Mh2 : {0., 1.})
-            cases.push_back({a, b, c, Mh2});
+            cases.push_back({{a, b, c, Mh2}});
     bool agree = true;
     for (std::size_t first = 0; first < cases.size(); first += VA::size())
       {
