@@ -13,6 +13,9 @@ import shutil
 import subprocess
 import sys
 
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), '..', 'common'))
+from granular_run import report  # noqa: E402
+
 exe, layered, column = sys.argv[1:4]
 QUICK = ['--set', 'Mesh/cells x=32', '--set', 'Time stepping/final time=0.5',
          '--set', 'Output/progress interval=0', '--set', 'Checkpoint/every steps=20']
@@ -22,12 +25,6 @@ def run(prm, directory, *extra):
     p = subprocess.run([exe, prm, '--set', f'Output/directory={directory}', *extra],
                        capture_output=True, text=True)
     return p.returncode, p.stderr.splitlines()
-
-
-def report(title, code, err):
-    print(f'{title}: exit {code}, {len(err)} line(s) on stderr')
-    for line in err:
-        print('  ' + line)
 
 
 def newest(directory):

@@ -20,3 +20,11 @@ def run(exe, prm, directory, settings=(), label=None):
         sys.exit(p.stderr)
     with open(os.path.join(directory, 'summary.json')) as f:
         return json.load(f)
+
+
+def report(title, code, err):
+    """Prints a run's outcome for a test's stdout: '<title>: exit N, K
+    line(s) on stderr', then each stderr line indented."""
+    print(f'{title}: exit {code}, {len(err)} line(s) on stderr')
+    for line in err:
+        print('  ' + line)

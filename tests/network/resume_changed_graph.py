@@ -10,9 +10,13 @@ graph file ring.csv and vertex file ring_vertices.csv; prints one block per
 case, compared verbatim with resume_changed_graph.output)
 """
 import json
+import os
 import shutil
 import subprocess
 import sys
+
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), '..', 'common'))
+from granular_run import report  # noqa: E402
 
 exe, prm = sys.argv[1:3]
 
@@ -22,12 +26,6 @@ def run(*extra):
                         '--set', 'Output/progress interval=0', *extra],
                        capture_output=True, text=True)
     return p.returncode, p.stderr.splitlines()
-
-
-def report(title, code, err):
-    print(f'{title}: exit {code}, {len(err)} line(s) on stderr')
-    for line in err:
-        print('  ' + line)
 
 
 def replace(file, old, new):
