@@ -158,6 +158,18 @@ namespace granular_dg::dg
                       "10 times this, of each component's largest value (doc/engine.md). "
                       "For scenes whose operator does not depend on time, 1D, line engine, "
                       "ssp_rk3. 0: compute every cell. Allowed: [0, 1e-14].");
+    prm.declare_entry("skip cells at rest", "false", Patterns::Bool(),
+                      "2D engine: leave out the cells at the physics' rest state and out "
+                      "of a step's reach of the others, and the faces between them (doc/"
+                      "engine.md, \"Cells at rest\"). Cells on a boundary with data are "
+                      "always computed. For physics with a rest state (nonlinear "
+                      "elasticity), without subcell blending.");
+    prm.declare_entry("rest tolerance", "0", Patterns::Double(0),
+                      "With skip cells at rest: a cell is at rest when every Legendre "
+                      "coefficient of each component i is at most this times the largest "
+                      "|coefficient| of i in the domain now. The results agree with the "
+                      "full computation to about this, of each component's largest value; "
+                      "bit for bit at 0 (exactly at rest). Allowed: [0, 1e-10].");
     prm.leave_subsection();
 
     const std::string limiters = limiter_selection(physics_variables);
@@ -230,6 +242,8 @@ namespace granular_dg::dg
     check_stability_limit = prm.get_bool("check stability limit");
     scheme = time_scheme_names.parse("Time stepping/scheme", prm.get("scheme"));
     skip_tolerance = prm.get_double("skip tolerance");
+    skip_at_rest   = prm.get_bool("skip cells at rest");
+    rest_tolerance = prm.get_double("rest tolerance");
     prm.leave_subsection();
     require(skip_tolerance <= max_skip_tolerance, "Time stepping/skip tolerance",
             skip_tolerance,
@@ -237,6 +251,10 @@ namespace granular_dg::dg
               "]: a larger tolerance takes slowly moving cells for quiet ones, and the "
               "results no longer agree with the full computation to 1e-12 "
               "(doc/engine.md, \"Skipping quiet cells\")");
+    // a cell left out is within the tolerance of rest (no drift adds up)
+    require(rest_tolerance <= 1e-10, "Time stepping/rest tolerance", rest_tolerance,
+            "must be in [0, 1e-10]: the results agree with the full computation to about "
+            "the tolerance (doc/engine.md, \"Cells at rest\")");
     // (a stability study, check stability limit = false, may go beyond 1)
     // (SSP-RK3: at most 1, also for the network's forward Euler at degree 0)
     const double largest =

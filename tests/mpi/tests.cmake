@@ -25,6 +25,14 @@ granular_dg_test(mpi/layered_2d_blending_ranks EXE ${TEST_PYTHON}
   COMPARE stdout KEEP_OUTPUT NUMDIFF -a 1e-12 -r 0 LABELS mpi)
 set_tests_properties(mpi/layered_2d_blending_ranks PROPERTIES RUN_SERIAL TRUE)
 
+# The same with the cells at rest left out (layered_2d_rest.prm: the reach
+# of a step crosses rank boundaries through the ghost cells' flags).
+granular_dg_test(mpi/layered_2d_rest_ranks EXE ${TEST_PYTHON}
+  ARGS ${CMAKE_CURRENT_SOURCE_DIR}/mpi/rank_equivalence.py $<TARGET_FILE:granular_dg>
+       ${CMAKE_CURRENT_SOURCE_DIR}/mpi/layered_2d_rest.prm 1 2 3
+  COMPARE stdout KEEP_OUTPUT NUMDIFF -a 1e-12 -r 0 LABELS mpi)
+set_tests_properties(mpi/layered_2d_rest_ranks PROPERTIES RUN_SERIAL TRUE)
+
 # An inadmissible state found on rank 1 of 2 (the top row of a 2D strip):
 # summary.json's status (rank 0 writes it, and prints the same line) names
 # the position and state of that rank's point, not "on another MPI rank"

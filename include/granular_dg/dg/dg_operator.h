@@ -8,6 +8,7 @@
 #include <deal.II/matrix_free/matrix_free.h>
 
 #include <granular_dg/dg/blended_cells.h>
+#include <granular_dg/dg/cells_at_rest.h>
 #include <granular_dg/dg/boundary.h>
 #include <granular_dg/dg/numerical_flux.h>
 #include <granular_dg/dg/operator.h>
@@ -37,6 +38,19 @@ namespace granular_dg::dg
     {
       static constexpr int value = (dim == 1) ? -1 : Physics::max_compiled_degree;
     };
+
+    /// Physics::zero_is_rest_state if the physics sets it (the state zero
+    /// has zero flux, zero numerical flux against itself and no source, with
+    /// any coefficients: CellsAtRest may leave it out), else false.
+    template <typename Physics, typename = void>
+    struct ZeroIsRestState : std::false_type
+    {};
+    template <typename Physics>
+    struct ZeroIsRestState<Physics, std::void_t<decltype(Physics::zero_is_rest_state)>>
+      : std::bool_constant<Physics::zero_is_rest_state>
+    {};
+    template <typename Physics>
+    inline constexpr bool zero_is_rest_state = ZeroIsRestState<Physics>::value;
   } // namespace internal
 
   namespace internal
@@ -127,6 +141,8 @@ namespace granular_dg::dg
     template <typename T>
     using Coefficients = std::array<T, n_coefficients>;
 
+    using RestUse = typename Operator<dim>::RestUse;
+
     DGOperator(const Physics &physics, BoundaryMap<dim> bc);
 
     std::string
@@ -141,7 +157,9 @@ namespace granular_dg::dg
       const auto n = [](const auto &v) { return v.capacity() * sizeof(v[0]); };
       return data.memory_consumption() + n(inverse_cell_volume) +
              inverse_mass_diagonal.memory_consumption() + n(cell_coefficients) +
-             n(face_coefficients_m) + n(face_coefficients_p) + blending.memory_consumption();
+             n(face_coefficients_m) + n(face_coefficients_p) + blending.memory_consumption() +
+             stage_rate.memory_consumption() +
+             (rest ? rest->memory_consumption() + n(rest_speed) + n(sum_inverse_h) : 0);
     }
 
     /// Subcell blending (BlendedCells) on axis-aligned Cartesian meshes in
@@ -160,6 +178,23 @@ namespace granular_dg::dg
         }
     }
 
+    bool
+    skip_cells_at_rest(double tolerance, unsigned int reach) override;
+
+    void
+    find_cells_at_rest(const VectorType &u) override;
+
+    void
+    use_cells_at_rest(const RestUse use) const override
+    {
+      rest_use = rest ? use : RestUse::off;
+      if (rest_use == RestUse::step)
+        rest->count_step();
+    }
+
+    std::pair<double, double>
+    cell_updates_left_out() const override;
+
     const std::vector<double> &
     blending_factors() const override
     {
@@ -175,6 +210,13 @@ namespace granular_dg::dg
     /// dst = M^{-1} R(t, src)
     void
     apply(double time, const VectorType &src, VectorType &dst) const override;
+
+    /// Operator::apply_stage(); while a step leaves out cells at rest, the
+    /// stage updates only the entries of the computed cells, and the others
+    /// keep the source's values.
+    void
+    apply_stage(double time, const VectorType &src, VectorType &dst,
+                const StageUpdate<> &s) const override;
 
     /// max over quadrature points of max(lambda(U), min_speed) *
     /// sum_d |row_d(J^{-1})|; the stable step is CFL / this value.
@@ -242,6 +284,28 @@ namespace granular_dg::dg
     std::vector<Coefficients<VA>> cell_coefficients, face_coefficients_m,
       face_coefficients_p;
     mutable double time = 0.;
+    /// the rate of apply_stage() when it cannot be dst
+    mutable VectorType stage_rate;
+    /// the cells at rest (Time stepping/skip cells at rest; null: off), how
+    /// the kernels use them now, and per cell batch the rest state's wave
+    /// speed and sum_d |row_d(J^{-1})| (the wave-speed scan of a batch at rest)
+    std::unique_ptr<CellsAtRest<dim, VA>> rest;
+    mutable RestUse                       rest_use = RestUse::off;
+    std::vector<VA>                       rest_speed, sum_inverse_h;
+    /// whether the kernels leave out cell batch b or face batch f
+    bool
+    left_out_cell_batch(const unsigned int b) const
+    {
+      return rest_use == RestUse::step && !rest->cell_batch(b);
+    }
+    bool
+    left_out_face_batch(const unsigned int f) const
+    {
+      return rest_use == RestUse::step && !rest->face_batch(f);
+    }
+    /// rest_speed and sum_inverse_h of every cell batch
+    void
+    tabulate_rest_speeds();
     /// subcell blending (2D; off while blending_max = 0)
     const DoFHandler<dim>           *dof_handler  = nullptr;
     double                           blending_max = 0.;

@@ -27,6 +27,25 @@ namespace granular_dg::dg
       return x;
     }
 
+    /// sum_d |row_d(J^{-1})| of phi's cell batch (affine cells: the same at
+    /// every point), the wave-speed scan's 1/h
+    template <typename VA, typename Eval>
+    VA
+    sum_inverse_h(const Eval &phi)
+    {
+      constexpr int dim       = Eval::dimension;
+      const auto    inv_jac   = phi.inverse_jacobian(0);
+      VA            sum_inv_h = 0.;
+      for (int d = 0; d < dim; ++d)
+        {
+          VA row = 0.;
+          for (int e = 0; e < dim; ++e)
+            row += inv_jac[d][e] * inv_jac[d][e];
+          sum_inv_h += std::sqrt(row);
+        }
+      return sum_inv_h;
+    }
+
     /// FEEvaluation returns a scalar (not a Tensor) for one component;
     /// these adapters let the kernels treat every system as a Tensor.
     template <int n, typename T, typename Eval>
@@ -147,6 +166,66 @@ namespace granular_dg::dg
     this->dof_handler = &dof_handler;
     if constexpr (dim > 1)
       blending.reinit(dof_handler, phys, boundary, blending_max);
+    if (rest)
+      {
+        rest->reinit(data, dof_handler, [&](const types::boundary_id id) {
+          const auto it = boundary.find(id);
+          return it != boundary.end() && it->second.data != nullptr;
+        });
+        tabulate_rest_speeds();
+      }
+  }
+
+  template <int dim, typename Physics, int width>
+  bool
+  DGOperator<dim, Physics, width>::skip_cells_at_rest(const double       tolerance,
+                                                      const unsigned int reach)
+  {
+    rest = std::make_unique<CellsAtRest<dim, VA>>(tolerance, reach);
+    if (dof_handler != nullptr)
+      {
+        rest->reinit(data, *dof_handler, [&](const types::boundary_id id) {
+          const auto it = boundary.find(id);
+          return it != boundary.end() && it->second.data != nullptr;
+        });
+        tabulate_rest_speeds();
+      }
+    return true;
+  }
+
+  template <int dim, typename Physics, int width>
+  void
+  DGOperator<dim, Physics, width>::tabulate_rest_speeds()
+  {
+    // the rest state is zero (Physics::zero_is_rest_state)
+    FEEvaluation<dim, -1, 0, n_components, Number, VA> phi(data);
+    rest_speed.resize(data.n_cell_batches());
+    sum_inverse_h.resize(data.n_cell_batches());
+    for (unsigned int cell = 0; cell < data.n_cell_batches(); ++cell)
+      {
+        phi.reinit(cell);
+        sum_inverse_h[cell] = internal::sum_inverse_h<VA>(phi);
+        rest_speed[cell]    = phys.max_wave_speed(State<VA>(), cell_coefficients[cell]);
+      }
+  }
+
+  template <int dim, typename Physics, int width>
+  void
+  DGOperator<dim, Physics, width>::find_cells_at_rest(const VectorType &u)
+  {
+    if (rest)
+      rest->find(u);
+  }
+
+  template <int dim, typename Physics, int width>
+  std::pair<double, double>
+  DGOperator<dim, Physics, width>::cell_updates_left_out() const
+  {
+    if (!rest)
+      return {0., 0.};
+    const auto [left_out, all] = rest->updates();
+    const MPI_Comm comm        = data.get_vector_partitioner()->get_mpi_communicator();
+    return {Utilities::MPI::sum(left_out, comm), Utilities::MPI::sum(all, comm)};
   }
 
   template <int dim, typename Physics, int width>
@@ -260,6 +339,8 @@ namespace granular_dg::dg
     FEEvaluation<dim, fe_degree, n_q_points_1d<fe_degree>, n_components, double, VA> phi(op.data);
     for (unsigned int cell = cell_range.first; cell < cell_range.second; ++cell)
       {
+        if (op.left_out_cell_batch(cell))
+          continue;
         phi.reinit(cell);
         phi.gather_evaluate(src, EvaluationFlags::values);
         const auto &a = op.cell_coefficients[cell];
@@ -296,6 +377,8 @@ namespace granular_dg::dg
     FaceEval phi_p(op.data, false);
     for (unsigned int face = face_range.first; face < face_range.second; ++face)
       {
+        if (op.left_out_face_batch(face))
+          continue;
         phi_m.reinit(face);
         phi_m.gather_evaluate(src, EvaluationFlags::values);
         phi_p.reinit(face);
@@ -331,6 +414,8 @@ namespace granular_dg::dg
                                                                                         true);
     for (unsigned int face = face_range.first; face < face_range.second; ++face)
       {
+        if (op.left_out_face_batch(face))
+          continue;
         phi.reinit(face);
         phi.gather_evaluate(src, EvaluationFlags::values);
         const auto bc_it = op.boundary.find(op.data.get_boundary_id(face));
@@ -376,26 +461,24 @@ namespace granular_dg::dg
     FEEvaluation<dim, fe_degree, n_q_points_1d<fe_degree>, n_components, double, VA> phi(op.data);
     for (unsigned int cell = 0; cell < op.data.n_cell_batches(); ++cell)
       {
-        phi.reinit(cell);
-        phi.gather_evaluate(solution, EvaluationFlags::values);
         // affine cells (asserted in reinit()): J^{-1} is the same at every
         // point, and max_q (s_q * h) = (max_q s_q) * h in floating point
-        const auto inv_jac   = phi.inverse_jacobian(0);
-        VA         sum_inv_h = 0.;
-        for (int d = 0; d < dim; ++d)
+        VA local = 0.;
+        if (op.rest_use != Operator<dim>::RestUse::off && op.rest->cell_batch_at_rest(cell))
+          local = std::max(op.rest_speed[cell], VA(min_speed)) * op.sum_inverse_h[cell];
+        else
           {
-            VA row = 0.;
-            for (int e = 0; e < dim; ++e)
-              row += inv_jac[d][e] * inv_jac[d][e];
-            sum_inv_h += std::sqrt(row);
+            phi.reinit(cell);
+            phi.gather_evaluate(solution, EvaluationFlags::values);
+            const VA    sum_inv_h = sum_inverse_h<VA>(phi);
+            const auto &a         = op.cell_coefficients[cell];
+            for (unsigned int q = 0; q < phi.n_q_points; ++q)
+              local =
+                std::max(local,
+                         std::max(op.phys.max_wave_speed(get_state<n_components, VA>(phi, q), a),
+                                  VA(min_speed)));
+            local = local * sum_inv_h;
           }
-        const auto &a     = op.cell_coefficients[cell];
-        VA          local = 0.;
-        for (unsigned int q = 0; q < phi.n_q_points; ++q)
-          local = std::max(local,
-                           std::max(op.phys.max_wave_speed(get_state<n_components, VA>(phi, q), a),
-                                    VA(min_speed)));
-        local = local * sum_inv_h;
         for (unsigned int v = 0; v < op.data.n_active_entries_per_cell_batch(cell); ++v)
           result = std::max(result, local[v]);
       }
@@ -413,6 +496,9 @@ namespace granular_dg::dg
     FEEvaluation<dim, fe_degree, n_q_points_1d<fe_degree>, n_components, double, VA> phi(op.data);
     for (unsigned int cell = 0; cell < op.data.n_cell_batches(); ++cell)
       {
+        // a batch the step leaves out keeps its state, which was at rest
+        if (op.left_out_cell_batch(cell))
+          continue;
         phi.reinit(cell);
         phi.gather_evaluate(solution, EvaluationFlags::values);
         const unsigned int lanes = op.data.n_active_entries_per_cell_batch(cell);
@@ -453,18 +539,55 @@ namespace granular_dg::dg
       dst.scale(inverse_mass_diagonal);
     else
       {
-        const unsigned int n = dofs_per_cell;
-        double            *x = dst.begin();
-        for (std::size_t c = 0; c < inverse_cell_volume.size(); ++c)
-          {
-            const double v = inverse_cell_volume[c];
-            for (unsigned int i = 0; i < n; ++i)
-              x[c * n + i] *= v;
-          }
+        // (the rate of a cell left out is zero)
+        const unsigned int n    = dofs_per_cell;
+        double            *x    = dst.begin();
+        const auto         cells = [&](const std::size_t first, const std::size_t end) {
+          for (std::size_t c = first; c < end; ++c)
+            {
+              const double v = inverse_cell_volume[c];
+              for (unsigned int i = 0; i < n; ++i)
+                x[c * n + i] *= v;
+            }
+        };
+        if (rest_use == RestUse::step)
+          for (const auto &[begin, end] : rest->computed_entries())
+            cells(begin / n, end / n);
+        else
+          cells(0, inverse_cell_volume.size());
       }
     if constexpr (dim > 1)
       if (blending.enabled())
         blending.apply(t, src, dst);
+  }
+
+  template <int dim, typename Physics, int width>
+  void
+  DGOperator<dim, Physics, width>::apply_stage(const double time, const VectorType &src,
+                                               VectorType &dst, const StageUpdate<> &s) const
+  {
+    if (rest_use != RestUse::step)
+      return Operator<dim>::apply_stage(time, src, dst, s);
+    VectorType *k_vector = &dst;
+    if (&dst == &src || &dst == s.old)
+      {
+        if (s.scratch == nullptr && stage_rate.size() != src.size())
+          stage_rate.reinit(src);
+        k_vector = s.scratch ? s.scratch : &stage_rate;
+      }
+    apply(time, src, *k_vector);
+    const double *u = src.begin(), *k = k_vector->begin();
+    double       *out = dst.begin();
+    for (const auto &[begin, end] : rest->computed_entries())
+      if (s.old)
+        for (unsigned int i = begin; i < end; ++i)
+          out[i] = stage_value(s.alpha, s.beta, s.gamma, u[i], s.old->begin()[i], k[i]);
+      else
+        for (unsigned int i = begin; i < end; ++i)
+          out[i] = stage_value(s.gamma, u[i], k[i]);
+    if (&dst != &src)
+      for (const auto &[begin, end] : rest->left_out_entries())
+        std::copy(u + begin, u + end, out + begin);
   }
 
   template <int dim, typename Physics, int width>

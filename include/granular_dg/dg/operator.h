@@ -11,6 +11,7 @@
 
 #include <algorithm>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace granular_dg::dg
@@ -131,6 +132,43 @@ namespace granular_dg::dg
     restrict_to(const ActiveCells * /*active*/)
     {
       return false;
+    }
+
+    /// How the batches found at rest by find_cells_at_rest() are used: not
+    /// at all, by the wave-speed scan only, or by a whole step (apply,
+    /// apply_stage and the admissibility scan leave out the batches out of
+    /// reach, and the step is counted in cell_updates_left_out()).
+    enum class RestUse
+    {
+      off,
+      wave_speed_scan,
+      step
+    };
+
+    /// Leave out the cells at rest and out of reach of the loud ones
+    /// (CellsAtRest: tolerance, reach in face neighbours). False if the
+    /// engine cannot (then nothing changes).
+    virtual bool
+    skip_cells_at_rest(const double /*tolerance*/, const unsigned int /*reach*/)
+    {
+      return false;
+    }
+
+    /// Find the cells of u at rest and the batches a step from u computes.
+    virtual void
+    find_cells_at_rest(const VectorType & /*u*/)
+    {}
+
+    virtual void
+    use_cells_at_rest(const RestUse /*use*/) const
+    {}
+
+    /// Cell updates left out and all cell updates of the steps so far, summed
+    /// over ranks (collective; zeros when nothing is left out).
+    virtual std::pair<double, double>
+    cell_updates_left_out() const
+    {
+      return {0., 0.};
     }
 
     /// Blend the DG rate with a first-order finite-volume rate on p + 1

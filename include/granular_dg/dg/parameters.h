@@ -34,6 +34,10 @@ namespace granular_dg::dg
     /// the full computation to 1e-12 of each component's largest value
     /// (doc/engine.md, "Skipping quiet cells")
     static constexpr double max_skip_tolerance = 1e-14;
+    /// Time stepping/skip cells at rest (CellsAtRest: the 2D engine leaves
+    /// out the cells at the physics' rest state, within rest_tolerance)
+    bool         skip_at_rest   = false;
+    double       rest_tolerance = 0.;
     LimiterType  limiter      = LimiterType::none;
     std::string  limiter_name = "none";
     double       tvb_M        = 0.;

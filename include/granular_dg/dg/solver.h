@@ -143,6 +143,9 @@ namespace granular_dg::dg
     HookList<dim>                    hooks;
     /// the cells a step computes, with Time stepping/skip tolerance > 0
     std::unique_ptr<ActiveCells>     active;
+    /// whether the operator's cells at rest (Time stepping/skip cells at
+    /// rest) are those of the present state (time_step() found them)
+    bool                             rest_found = false;
     /// the last CFL step time_step() gave
     double                           cfl_step = 0;
     VectorType                       solution, last_good, benchmark_start;

@@ -87,6 +87,7 @@ namespace granular_dg::network
       }
     DataOutBase::VtkFlags flags(time, index);
     flags.print_date_and_time = false;
+    flags.compression_level   = DataOutBase::VtkFlags::best_speed;
     const std::string name    = snapshot_name("solution-", index, ".vtu");
     std::ofstream     out(directory + "/" + name);
     DataOutBase::write_vtu(patches, {"u", "flux", "x_edge", "edge"}, {}, flags, out);

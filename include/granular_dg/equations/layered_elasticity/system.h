@@ -89,6 +89,9 @@ namespace granular_dg::elasticity
     static constexpr unsigned int n_coefficients  = 3;
     static constexpr const char  *name            = "nonlinear elasticity";
     static constexpr bool         has_source_term = false;
+    /// zero strain and velocity are at rest in every layer: sigma(0) = 0,
+    /// zero flux and zero numerical flux (Time stepping/skip cells at rest)
+    static constexpr bool zero_is_rest_state = true;
     /// Limiter/scheme's name for limiting_variables() (stress and velocity)
     static constexpr const char  *limiting_variables_name = "flux_variables";
     /// a prescribed normal stress g[0] (BoundaryCondition::kind)
