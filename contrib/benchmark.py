@@ -40,7 +40,7 @@ QUIET = ["--set", "Output/output times=", "--set", "Output/write vtu=false",
 # network (degree 0 ships; the limiter is on for p >= 1 as in its study), and
 # the column computes every cell (skip tolerance 0: the cost of a full step;
 # what skipping saves is measured on whole runs, doc/column.md), and
-# layered_1d limits every cell (the indicator it ships since issue 21 flags
+# layered_1d limits every cell (the modal-energy indicator it ships flags
 # few: the benchmark keeps measuring the full limiter's cost, comparable with
 # the earlier tables of doc/performance.md).
 CASES = {

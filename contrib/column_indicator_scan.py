@@ -1,6 +1,6 @@
 #!/usr/bin/python3
 """The column's shock capturing against the exact solution of the linear case
-(issue 21, doc/column.md "Shock capturing"): for each choice of limiting,
+(doc/column.md, "Shock capturing"): for each choice of limiting,
   - tests/column/m1_base.prm (m = 1 on (0, 5), P2, t = 4) on 100, 200 (the
     paper's dx = 0.025) and 400 cells: the strain error at (z, t) = (3, 4)
     against the closed form, the L1 error of (strain, velocity), the cells

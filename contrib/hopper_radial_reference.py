@@ -1,7 +1,8 @@
 #!/usr/bin/python3
 """Independent reference for the radial (Jenike) field of the hopper scene.
 
-Solves the BVP (16)-(17) of Gremaud & Matthews (seed 003) by shooting from the
+Solves the BVP (16)-(17) of Gremaud & Matthews (On the computation of steady
+hopper flows I) by shooting from the
 axis with SciPy's DOP853 (rtol 1e-13) and Brent's method, and writes the
 columns the tests compare (theta,sigma,psi,T_rr,T_rtheta,T_thetatheta,T_phiphi
 per unit rho g r) at the points of radial-field.csv. It shares no code with

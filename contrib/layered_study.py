@@ -5,7 +5,8 @@ flux against the interface-aware one, and the work-precision chart.
     contrib/layered_study.py BUILD_DIR OUT_DIR REFERENCE_MODES_CSV [--quick]
 
 Configurations: naive = local Lax-Friedrichs on (eps, m) with the
-componentwise minmod limiter (the direct implementation of seed 001, 2.1);
+componentwise minmod limiter (the direct implementation of section 2.1 of the
+central-upwind paper on layered elasticity);
 aware = the impedance (linearised Godunov) flux with the minmod limiter on
 the flux variables (sigma, u) in every cell; aware-indicator = the same
 limiter in the cells the modal-energy indicator flags (Limiter/indicator =
@@ -132,7 +133,7 @@ def main():
             if sel:
                 ax.loglog([r["time_loop_cpu_s"] for r in sel], [r["l1_strain_error"] for r in sel],
                           styles[name], label="%s P%d" % (name, degree))
-    # Clawpack's second-order f-wave finite volumes on the same case (issue 4)
+    # Clawpack's second-order f-wave finite volumes on the same case (doc/layered.md)
     ax.loglog([1, 5], [0.09, 0.04], "k*", ms=12, label="Clawpack f-wave (issue 4)")
     ax.set_xlabel("CPU time of the time loop [s]")
     ax.set_ylabel("L1 error of the strain at t = 240")

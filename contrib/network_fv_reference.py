@@ -1,6 +1,7 @@
 #!/usr/bin/python3
 """An independent implementation of the finite volume scheme (4.1) of Musch,
-Fjordholm & Risebro (seed 002) for the five examples of their Section 7, in
+Fjordholm & Risebro (scalar conservation laws on networks, Networks and
+Heterogeneous Media 17, 2022) for the five examples of their Section 7, in
 plain numpy: the reference the C++ degree-0 results are tested against
 (tests/network/example_7_*_table.output are written by this script).
 

@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""Figures of a column run in the layout of seed 000, Figs 4.1-4.3.
+"""Figures of a column run in the layout of Coffey & Gremaud, Figs 4.1-4.3.
 
     contrib/plot_column.py RUNDIR OUT.png [--title TEXT] [--zmax Z] [--tmax T] [--compare RUNDIR:label ...]
 

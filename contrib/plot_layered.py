@@ -1,6 +1,7 @@
 #!/usr/bin/python3
-"""Profiles of layered_strip runs against a reference, like seed 001's
-Figs 2.2-2.4 (naive flux) and 4.1-4.3 (interface-aware flux).
+"""Profiles of layered_strip runs against a reference, like Figs
+2.2-2.4 (naive flux) and 4.1-4.3 (interface-aware flux) of the central-upwind
+paper on layered elasticity.
 
     contrib/plot_layered.py OUT.png --time 240 --xlim 160,220 REF_DIR:label RUN_DIR:label [...]
 

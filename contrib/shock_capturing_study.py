@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""Shock capturing in the 1D scenes (issue 21): error against CPU time for
+"""Shock capturing in the 1D scenes: error against CPU time for
   none        no limiter, no blending
   everywhere  the TVB minmod limiter in every cell (the scenes' old default)
   indicator   the minmod limiter in the cells the modal-energy indicator flags

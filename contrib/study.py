@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""Speed against accuracy across the scenes (issue 7): work-precision charts,
+"""Speed against accuracy across the scenes: work-precision charts,
 stability maps CFL x degree x (flux, limiter) with the limits found by
 bisection, the cheapest configuration reaching two target errors per scene,
 and where the methods fail (contrib/study_failures.py).
@@ -180,9 +180,9 @@ def flux_limiter(flux, limiter):
     return ["Discretization/numerical flux=" + flux, "Limiter/scheme=" + limiter]
 
 
-# the limiter only in the cells the modal-energy indicator flags (issue 21)
+# the limiter only in the cells the modal-energy indicator flags
 FLAGGED = ["Limiter/indicator=modal_energy"]
-# subcell blending (issue 21), alone (no limiter)
+# subcell blending, alone (no limiter)
 BLENDING = ["Limiter/subcell blending=true"]
 
 

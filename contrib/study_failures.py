@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""Where the methods fail (issue 7, item 2), reproduced and charted for
+"""Where the methods fail, reproduced and charted for
 contrib/study.py (which runs it: `contrib/study.py BUILD OUT`; this module
 has no command line of its own). Each mode writes OUT/failure-NAME.{png,svg,csv}
 and a few lines of numbers (read from the runs) into OUT/failures.md:
@@ -44,7 +44,7 @@ import numpy as np  # noqa: E402
 LAYERS = 60            # layers of width 1 on [0, 60]
 LAYERED_T = 50         # the front is at x ~ 45 then: the outflow end is not reached
 # the limiters of these studies act in every cell (prm/layered_1d.prm and
-# prm/elasticity_shock.prm ship the modal-energy indicator since issue 21)
+# prm/elasticity_shock.prm ship the modal-energy indicator)
 EVERYWHERE = ["Limiter/indicator=everywhere"]
 LAYERED_SHORT = ["Mesh/x max=%d" % LAYERS, "Time stepping/final time=%g" % LAYERED_T] + EVERYWHERE
 

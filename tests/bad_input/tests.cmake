@@ -1,5 +1,5 @@
-# bad_input tests (included by tests/CMakeLists.txt): the bad-input suite of
-# issue 8. Every NAME.prm here is a malformed case run as
+# bad_input tests (included by tests/CMakeLists.txt): the bad-input suite.
+# Every NAME.prm here is a malformed case run as
 # `granular_dg NAME.prm`: exit code 2, exactly one line on stderr naming the
 # file and line where applicable, the parameter, its value and what is
 # allowed (compared verbatim with NAME.output: numdiff -a 0 -r 0 on the

@@ -1,5 +1,5 @@
 # checkpoint tests (included by tests/CMakeLists.txt): checkpoint/restart
-# equivalence (issue 8). tests/checkpoint/resume_test.py runs a case twice,
+# equivalence. tests/checkpoint/resume_test.py runs a case twice,
 # uninterrupted (the reference) and stopped / killed / interrupted and then
 # resumed, and compares everything the reference wrote: files byte for byte
 # (same rank count), CSV numbers column-scaled, summary.json but timings.

@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""The shipped shock capturing of prm/column_m1.prm (issue 21) against the
+"""The shipped shock capturing of prm/column_m1.prm against the
 exact solution of the linear case: the same prm on (0, 5) at its dx = 0.025
 (200 P2 cells) to t = 4.
 

@@ -25,7 +25,7 @@ granular_dg_test(column/m1_front PRM column/m1_base.prm
   COMPARE timeseries.csv:time,front_strain,front_velocity NUMDIFF -r 0.02 -a 1e-12)
 
 # The shipped shock capturing of prm/column_m1.prm (the characteristic limiter
-# on the cells the modal-energy indicator flags, threshold 0.2; issue 21) at
+# on the cells the modal-energy indicator flags, threshold 0.2) at
 # the paper's dx = 0.025 on (0, 5), t = 4: the strain error at (z, t) = (3, 4)
 # against the closed form must be at most half of the 5.09e-4 that the limiter
 # in every cell leaves (.output 1.2725e-4 with -a 1.2725e-4: passes iff the

@@ -2,7 +2,7 @@
 # EOC of degrees 0-4 on the periodic linear wave against the exact solution:
 # the .output holds the theoretical rate p + 1 of the L2 and of the L1 error;
 # |EOC - (p + 1)| <= 0.2, so
-# every degree converges at >= p + 0.8 (issue 2).
+# every degree converges at >= p + 0.8.
 granular_dg_test(elasticity/linear_wave_eoc PRM ../prm/elasticity_linear_wave.prm
   ARGS --set Convergence/enabled=true
   COMPARE convergence-rates.csv NUMDIFF -a 0.2 -r 0)

@@ -1,6 +1,6 @@
 #!/usr/bin/python3
-"""--benchmark times the case's own dynamics (issue 22 item 5 and the smaller
-benchmark defects): blocks restart from the initial state instead of
+"""--benchmark times the case's own dynamics, and the smaller benchmark
+defects are fixed: blocks restart from the initial state instead of
 stepping past the final time, the directory gets benchmark.json and nothing
 else (so a second benchmark into it runs), and benchmark.json names the
 limiter.

@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""A second Ctrl-C must not leave an unusable directory (issue 22 item 10):
+"""A second Ctrl-C must not leave an unusable directory:
 SIGINT twice in quick succession after the first checkpoint; the run exits
 130 with a complete final checkpoint (the second signal waits until it is in
 place), and --resume finishes the run. Four trials.

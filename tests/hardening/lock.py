@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""The output directory is locked while a run writes it (issue 22 item 9): a
+"""The output directory is locked while a run writes it: a
 second run or a resume on it exits 2 with one line naming the holder's PID;
 once the holder is killed (kill -9) the OS releases the lock and a new run
 proceeds.

@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""Resume compares parameters by meaning, not by text (issue 22 item 11): a
+"""Resume compares parameters by meaning, not by text: a
 run made with Output/directory = rel and output times '0.5, 0.75' and
 stopped at max steps is resumed as ./rel/ with the times '0.75, 0.5', and a
 second time by its absolute path.

@@ -1,5 +1,5 @@
 # hardening tests (included by tests/CMakeLists.txt): the defects a new user
-# found in main at 120e9ea (issue 22), one test each; every one of them
+# found in main at 120e9ea, one test each; every one of them
 # failed before its fix.
 
 # 1. A 2D convergence study refines every direction: EOC p + 1 (it reported
@@ -83,7 +83,7 @@ granular_dg_test(hardening/no_sliver_steps PRM ../prm/column_vertical.prm
 granular_dg_test(hardening/memory_does_not_fit PRM hardening/memory_does_not_fit.prm EXIT 2
   KEEP_OUTPUT NUMDIFF -a 0 -r 1)
 
-# The memory report (summary.json diagnostics/memory, issue 19): the state
+# The memory report (summary.json diagnostics/memory): the state
 # vectors each hold 8 bytes per DoF (the solution, SSP-RK3's stage vector, the
 # last good state), measured with deal.II's memory_consumption() on the 2D
 # strip (432000 DoFs, 2 steps); 1e-3 relative (the vectors' fixed overhead is

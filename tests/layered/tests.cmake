@@ -20,9 +20,10 @@ foreach(variant aware naive)
     COMPARE profile-0003.csv NUMDIFF -a 1e-7 -r 0)
 endforeach()
 
-# Where the naive flux fails (seed 001, 2.1.1): the largest stress jump
+# Where the naive flux fails (the central-upwind paper on layered elasticity,
+# section 2.1.1): the largest stress jump
 # across a material interface at any output time of case (b), 4 cells per
-# layer, P2, with the limiter in every cell (the naive scheme of seed 001).
+# layer, P2, with the limiter in every cell (the naive scheme of that paper).
 # Stress is continuous in the exact solution. The interface-aware
 # flux must keep it below 0.02 (measured 6.6e-3; .output 0, tolerance 0.02);
 # local Lax-Friedrichs on (eps, m) must exceed 1, i.e. jumps of the order of
@@ -46,7 +47,7 @@ foreach(ranks 1 2)
     MPI ${ranks} COMPARE slice-0001.csv NUMDIFF -a 1e-11 -r 0 LABELS mpi)
 endforeach()
 
-# The transmissive ("outflow") end lets waves leave (issue 22 item 4): the
+# The transmissive ("outflow") end lets waves leave: the
 # exterior state keeps the outgoing Riemann invariant and takes the incoming
 # one from the material at rest. A linear pulse leaves [0, 20] by t = 15;
 # at t = 20 nothing may be left: without a limiter round-off only (|strain|
@@ -76,8 +77,8 @@ granular_dg_test(layered/outflow_train PRM ../prm/layered_1d.prm
   COMPARE timeseries.csv:time,energy NUMDIFF -r 1e-3 LABELS slow)
 
 # The shipped case (b) limits only the cells the modal-energy indicator flags
-# and keeps the unlimited scheme's accuracy on the smooth wave train (issue 21:
-# L1 strain error at t = 240 0.0018 against the P3 reference, target 0.03;
+# and keeps the unlimited scheme's accuracy on the smooth wave train
+# (L1 strain error at t = 240 0.0018 against the P3 reference, target 0.03;
 # 0.128 with the limiter in every cell): within 0.003 of the unlimited run,
 # which the limiter in every cell is not (tests/layered/indicator_accuracy.py).
 granular_dg_test(layered/indicator_accuracy EXE ${TEST_PYTHON}

@@ -14,7 +14,7 @@ granular_dg_test(mpi/layered_2d_rank_equivalence EXE ${TEST_PYTHON}
   COMPARE stdout KEEP_OUTPUT NUMDIFF -a 1e-12 -r 0 LABELS mpi)
 set_tests_properties(mpi/layered_2d_rank_equivalence PROPERTIES RUN_SERIAL TRUE)
 
-# The same with subcell blending in 2D (issue 21; layered_2d_blending.prm: the
+# The same with subcell blending in 2D (layered_2d_blending.prm: the
 # pulse of amplitude 5, no limiter, 134-206 of the 384 cells blended): the
 # factors read the ghost neighbours' modes and the floor is reduced over the
 # ranks, so 1, 2 and 3 ranks agree to 1e-12 (blended_cells exactly: an

@@ -1,6 +1,6 @@
 #!/usr/bin/python3
 """A chain of edges with the same flux through vertices without volume equals
-the same problem on one line, to round-off (issue 20).
+the same problem on one line, to round-off.
 
 usage: chain_equals_line.py EXE CHAIN_PRM [--tolerance 1e-12] [--set Section/name=value ...]
 

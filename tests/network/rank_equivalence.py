@@ -1,6 +1,6 @@
 #!/usr/bin/python3
 """A network run on 1, 2, 3 ... MPI ranks computes the same solution bit for
-bit, and a run stopped on one rank count resumes on another (issue 20).
+bit, and a run stopped on one rank count resumes on another.
 
 usage: rank_equivalence.py EXE PRM RANKS... [--resume STEPS:FROM:TO]
                            [--set Section/name=value ...]   (in an empty directory)

@@ -137,7 +137,7 @@ granular_dg_test(network/no_edges PRM ../prm/network_example_7_4.prm
        --set "Network/Edge 5/direction=none" --set "Network/exact solution=none"
   EXIT 2 KEEP_OUTPUT)
 
-# ---------------------------------------------------------------- general graphs (issue 20)
+# ---------------------------------------------------------------- general graphs
 # Two star vertices joined by an edge (prm/network_two_stars.prm): L1 error
 # against the exact solution built from the stationary construction at each
 # vertex (shocks into the connecting edge, then out of the second vertex), per
@@ -254,7 +254,7 @@ granular_dg_test(network/city_grid_mass_p0 PRM ../prm/network_city_grid.prm ${ci
   COMPARE summary.json:diagnostics/mass_balance_residual_max,diagnostics/mass_step_residual_max NUMDIFF -a 1e-13 -r 0
   EXPECT_FILES profile-0006.csv)
 
-# Edges over MPI ranks (issue 20): the solution does not depend on the number
+# Edges over MPI ranks: the solution does not depend on the number
 # of ranks, bit for bit (tests/network/rank_equivalence.py prints the number
 # of profile and VTU files that differ from the one-rank run: 0; and the
 # column-scaled difference of timeseries.csv without the round-off column
@@ -290,8 +290,8 @@ granular_dg_test(network/failure_on_rank_1 PRM ../prm/network_city_grid.prm ${ci
        --set "Time stepping/CFL number=1" --set Limiter/scheme=none
        --set "Network/vertex width factor=0.05"
   COMPARE summary.json:status,final_time NUMDIFF -r 1e-9 LABELS mpi)
-# Subcell blending on every edge (Limiter/subcell blending, no limiter; issue
-# 21): Burgers' shock through the vertex, P2; mass is conserved to round-off
+# Subcell blending on every edge (Limiter/subcell blending, no limiter):
+# Burgers' shock through the vertex, P2; mass is conserved to round-off
 # as with the limiter (measured 2.4e-14 / 5.0e-16; L1 error 5.2e-3 between the
 # unlimited 5.7e-3 and the limited 4.7e-3).
 granular_dg_test(network/mass_7_5_blending PRM ../prm/network_example_7_5.prm
@@ -301,7 +301,7 @@ granular_dg_test(network/mass_7_5_blending PRM ../prm/network_example_7_5.prm
   COMPARE summary.json:diagnostics/mass_balance_residual_max,diagnostics/mass_step_residual_max NUMDIFF -a 1e-13 -r 0)
 # The same run's timeseries.csv has the column blended_cells (cells of all
 # edges with a blending factor > 0): none at t = 0, the shock's cells
-# afterwards (issue 21).
+# afterwards.
 granular_dg_test(network/blended_cells_7_5 PRM ../prm/network_example_7_5.prm
   ARGS --set "Output/write vtu=false" --set Discretization/degree=2
        --set "Time stepping/CFL number=0.18" --set Limiter/scheme=none

@@ -6,7 +6,7 @@ if(PVPYTHON_EXECUTABLE)
     ARGS --no-mpi ${CMAKE_CURRENT_SOURCE_DIR}/paraview/read_pvd.py
          ${CMAKE_CURRENT_BINARY_DIR}/shock_run/out/solution.pvd
     COMPARE stdout NUMDIFF -a 0 -r 0 KEEP_OUTPUT FIXTURES_REQUIRED shock_output)
-  # HDF5/XDMF output (Output/format = hdf5, issue 19): the 2D strip, cut to
+  # HDF5/XDMF output (Output/format = hdf5): the 2D strip, cut to
   # 40 x 8 P2 cells, to t = 2 on 1 and 2 ranks; all ranks write one .h5 per
   # snapshot, rank 0 the .xdmf. The runs agree (timeseries, 1e-12), and
   # ParaView's XDMF reader opens solution.xdmf by absolute path: 3 steps at

@@ -1,6 +1,6 @@
 # Unit tests of the physics: small programs printing to stdout.
 granular_dg_unit_test(unit/elasticity_physics NUMDIFF -a 1e-7 -r 0)
-# Interface-aware flux at a material interface (issue 4): errors ~0.
+# Interface-aware flux at a material interface: errors ~0.
 granular_dg_unit_test(unit/layered_interface NUMDIFF -a 1e-7 -r 0)
 # The CFL stability limit of every Time stepping/scheme and degree 0-4,
 # computed from the program's integrators (Fourier analysis of upwind DG),
@@ -26,26 +26,26 @@ set_tests_properties(unit/gather_bytes PROPERTIES RUN_SERIAL TRUE)
 # CRC-32 (fallback to the older checkpoint, then none). Fails itself otherwise.
 granular_dg_unit_test(unit/shared_blocks MPI 3 NUMDIFF -a 0 -r 0 LABELS mpi)
 set_tests_properties(unit/shared_blocks PROPERTIES RUN_SERIAL TRUE)
-# Subcell blending in the line engine (issue 21): the blending factors (the
+# Subcell blending in the line engine: the blending factors (the
 # jump cell alpha_max, its neighbours half, smooth cells 0 with their rates
 # bitwise those of the cell-by-cell kernel), conservation to round-off, and with alpha = 1 the FV
 # rate of the subcells (checked by quadrature, not by the engine's tables);
 # degrees 1-4, linear advection, periodic. Fails itself otherwise.
 granular_dg_unit_test(unit/subcell_blending NUMDIFF -a 0 -r 0)
-# Subcell blending in the 2D MatrixFree engine (issue 21): the blending
+# Subcell blending in the 2D MatrixFree engine: the blending
 # factors (the jump cell alpha_max, its four face neighbours half, smooth
 # cells 0 with their rates bitwise unchanged), every mean rate the DG one and
 # conservation to round-off, and with alpha = 1 the FV rate of the subcells
 # plus the DG mean's correction (checked by quadrature, not by the engine's
 # tables); degrees 1-3, 2D linear advection, periodic. Fails itself otherwise.
 granular_dg_unit_test(unit/subcell_blending_2d NUMDIFF -a 0 -r 0)
-# SIMD batches of the line engine (issue 18): rates with batches equal the
+# SIMD batches of the line engine: rates with batches equal the
 # cell-by-cell kernel to 1e-14 of their size (elasticity quadratic/impedance
 # and exponential/LLF with two materials, the column with gravity, periodic
 # advection; degrees 0-4), and a stage written in place equals it written
 # out of place, bit for bit. Fails itself otherwise.
 granular_dg_unit_test(unit/line_batches NUMDIFF -a 0 -r 0)
-# The limiter's SIMD batches (issue 18): in 1D the analysis and TVB test of
+# The limiter's SIMD batches: in 1D the analysis and TVB test of
 # every cell run on batches of interior cells; the flags and the limited
 # states equal those of the cell-by-cell limiter, bit for bit (elasticity
 # flux_variables and characteristic with two materials, the column

@@ -158,7 +158,6 @@ namespace granular_dg::dg
       return data.memory_consumption() + n(inverse_cell_volume) +
              inverse_mass_diagonal.memory_consumption() + n(cell_coefficients) +
              n(face_coefficients_m) + n(face_coefficients_p) + blending.memory_consumption() +
-             stage_rate.memory_consumption() +
              (rest ? rest->memory_consumption() + n(rest_speed) + n(sum_inverse_h) : 0);
     }
 
@@ -284,8 +283,6 @@ namespace granular_dg::dg
     std::vector<Coefficients<VA>> cell_coefficients, face_coefficients_m,
       face_coefficients_p;
     mutable double time = 0.;
-    /// the rate of apply_stage() when it cannot be dst
-    mutable VectorType stage_rate;
     /// the cells at rest (Time stepping/skip cells at rest; null: off), how
     /// the kernels use them now, and per cell batch the rest state's wave
     /// speed and sum_d |row_d(J^{-1})| (the wave-speed scan of a batch at rest)

@@ -568,26 +568,13 @@ namespace granular_dg::dg
   {
     if (rest_use != RestUse::step)
       return Operator<dim>::apply_stage(time, src, dst, s);
-    VectorType *k_vector = &dst;
-    if (&dst == &src || &dst == s.old)
-      {
-        if (s.scratch == nullptr && stage_rate.size() != src.size())
-          stage_rate.reinit(src);
-        k_vector = s.scratch ? s.scratch : &stage_rate;
-      }
-    apply(time, src, *k_vector);
-    const double *u = src.begin(), *k = k_vector->begin();
-    double       *out = dst.begin();
+    VectorType &k = this->rate_vector(src, dst, s);
+    apply(time, src, k);
     for (const auto &[begin, end] : rest->computed_entries())
-      if (s.old)
-        for (unsigned int i = begin; i < end; ++i)
-          out[i] = stage_value(s.alpha, s.beta, s.gamma, u[i], s.old->begin()[i], k[i]);
-      else
-        for (unsigned int i = begin; i < end; ++i)
-          out[i] = stage_value(s.gamma, u[i], k[i]);
+      this->update_stage(src, dst, k, s, begin, end);
     if (&dst != &src)
       for (const auto &[begin, end] : rest->left_out_entries())
-        std::copy(u + begin, u + end, out + begin);
+        std::copy(src.begin() + begin, src.begin() + end, dst.begin() + begin);
   }
 
   template <int dim, typename Physics, int width>

@@ -77,23 +77,9 @@ namespace granular_dg::dg
     apply_stage(const double time, const VectorType &src, VectorType &dst,
                 const StageUpdate<> &s) const
     {
-      VectorType *k_vector = &dst;
-      if (&dst == &src || &dst == s.old)
-        {
-          if (s.scratch == nullptr && rate.size() != src.size())
-            rate.reinit(src);
-          k_vector = s.scratch ? s.scratch : &rate;
-        }
-      apply(time, src, *k_vector);
-      const unsigned int n = src.locally_owned_size();
-      const double      *u = src.begin(), *k = k_vector->begin();
-      double            *out = dst.begin();
-      if (s.old)
-        for (unsigned int i = 0; i < n; ++i)
-          out[i] = stage_value(s.alpha, s.beta, s.gamma, u[i], s.old->begin()[i], k[i]);
-      else
-        for (unsigned int i = 0; i < n; ++i)
-          out[i] = stage_value(s.gamma, u[i], k[i]);
+      VectorType &k = rate_vector(src, dst, s);
+      apply(time, src, k);
+      update_stage(src, dst, k, s, 0, src.locally_owned_size());
     }
 
     /// max over the quadrature points of max(lambda(U), min_speed) *
@@ -197,6 +183,35 @@ namespace granular_dg::dg
     {
       const auto &alpha = blending_factors();
       return std::count_if(alpha.begin(), alpha.end(), [](const double a) { return a > 0; });
+    }
+
+  protected:
+    /// Where apply_stage() puts the rate: dst itself when dst is neither src
+    /// nor s.old, else s.scratch or a vector of the operator's own.
+    VectorType &
+    rate_vector(const VectorType &src, VectorType &dst, const StageUpdate<> &s) const
+    {
+      if (&dst != &src && &dst != s.old)
+        return dst;
+      if (s.scratch == nullptr && rate.size() != src.size())
+        rate.reinit(src);
+      return s.scratch ? *s.scratch : rate;
+    }
+
+    /// The stage's vector operation on the locally owned entries [begin, end):
+    /// dst = (alpha src + beta old) + gamma k, or src + gamma k.
+    static void
+    update_stage(const VectorType &src, VectorType &dst, const VectorType &k,
+                 const StageUpdate<> &s, const unsigned int begin, const unsigned int end)
+    {
+      const double *u = src.begin(), *r = k.begin();
+      double       *out = dst.begin();
+      if (s.old)
+        for (unsigned int i = begin; i < end; ++i)
+          out[i] = stage_value(s.alpha, s.beta, s.gamma, u[i], s.old->begin()[i], r[i]);
+      else
+        for (unsigned int i = begin; i < end; ++i)
+          out[i] = stage_value(s.gamma, u[i], r[i]);
     }
 
   private:
