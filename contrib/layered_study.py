@@ -134,7 +134,7 @@ def main():
                 ax.loglog([r["time_loop_cpu_s"] for r in sel], [r["l1_strain_error"] for r in sel],
                           styles[name], label="%s P%d" % (name, degree))
     # Clawpack's second-order f-wave finite volumes on the same case (doc/layered.md)
-    ax.loglog([1, 5], [0.09, 0.04], "k*", ms=12, label="Clawpack f-wave (issue 4)")
+    ax.loglog([1, 5], [0.09, 0.04], "k*", ms=12, label="Clawpack f-wave")
     ax.set_xlabel("CPU time of the time loop [s]")
     ax.set_ylabel("L1 error of the strain at t = 240")
     ax.set_title("layered 1D strip: error against the reference vs CPU time")

@@ -13,7 +13,6 @@
 #include <unistd.h>
 
 #include <cerrno>
-#include <cstdlib>
 #include <cstring>
 #include <iostream>
 #include <string>
@@ -59,12 +58,6 @@ main(int argc, char **argv)
       std::cout << granular_dg::engine_information::scenes;
       return 0;
     }
-  // A run not started by mpirun: Open MPI's singleton need not start its
-  // runtime daemon (orted) for one process (0.3-0.5 s of start-up); a value
-  // the user set stays.
-  if (std::getenv("OMPI_COMM_WORLD_SIZE") == nullptr && std::getenv("PMIX_RANK") == nullptr &&
-      std::getenv("PMI_RANK") == nullptr)
-    ::setenv("OMPI_MCA_ess_singleton_isolated", "1", 0);
   const std::string engine = engine_path(argv[0]);
   ::execv(engine.c_str(), argv);
   std::cerr << "granular_dg: internal error: cannot start the engine " << engine << ": "

@@ -84,8 +84,19 @@ checkpoint_test(mpi_2d_resume_on_3_ranks mpi/layered_2d_small.prm stop:60
 checkpoint_test(mpi_2d_hdf5_stop_resume mpi/layered_2d_small.prm stop:60
   OPTIONS --every 20 ${mpi_options} --set Output/format=hdf5 --set "Output/write vtu=true"
   TOLERANCE 1e-12 LABELS mpi)
+# With the cells at rest left out (mpi/layered_2d_rest.prm): which cells a
+# step computes depends only on the state, and the count of the updates left
+# out continues from the checkpoint, so the resumed run ends byte for byte as
+# the uninterrupted one (summary.json's skipped_cell_updates included); and
+# resumed on 3 ranks after 2, to 1e-12.
+checkpoint_test(layered_2d_rest_stop_resume mpi/layered_2d_rest.prm stop:60
+  OPTIONS --every 20 --set "Time stepping/final time=2" --set "Output/output times=0.5, 1, 1.5")
+checkpoint_test(mpi_2d_rest_resume_on_3_ranks mpi/layered_2d_rest.prm stop:60 TOLERANCE 1e-12
+  OPTIONS --every 20 --np 2 --resume-np 3 --set "Time stepping/final time=2"
+          --set "Output/output times=0.5, 1, 1.5" LABELS mpi)
 set_tests_properties(checkpoint/mpi_2d_kill checkpoint/mpi_2d_resume_on_1_rank
-  checkpoint/mpi_2d_resume_on_3_ranks checkpoint/mpi_2d_hdf5_stop_resume PROPERTIES RUN_SERIAL TRUE)
+  checkpoint/mpi_2d_resume_on_3_ranks checkpoint/mpi_2d_hdf5_stop_resume
+  checkpoint/mpi_2d_rest_resume_on_3_ranks PROPERTIES RUN_SERIAL TRUE)
 
 # What cannot be resumed: exit 2 and one line each (verbatim).
 granular_dg_test(checkpoint/bad_resume EXE ${TEST_PYTHON}

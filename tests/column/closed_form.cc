@@ -1,4 +1,4 @@
-// Checks of the exact solution of the linear column (m = 1, G = 0; seed 000,
+// Checks of the exact solution of the linear column (m = 1, G = 0; Coffey & Gremaud,
 // section 2) in include/granular_dg/equations/friction_column/closed_form.h,
 // against the problem it solves, not against itself:
 //  - the wall condition u(0, t) = u_b and the front value u(t, t) = u_b e^{-t/2};

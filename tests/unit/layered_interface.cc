@@ -1,5 +1,5 @@
 // Unit tests of the interface-aware (impedance) flux of the elasticity
-// physics across a material interface (issue 4), both stress laws, dim 1, 2:
+// physics across a material interface, both stress laws, dim 1, 2:
 //  - a stationary contact (eps jumps, u.n and sigma continuous) produces the
 //    flux of (u, sigma) itself on both sides: no spurious wave is emitted
 //    (the local Lax-Friedrichs flux on (eps, m) does emit one: its defect is

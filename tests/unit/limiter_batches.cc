@@ -1,4 +1,4 @@
-// Unit test of the limiter's SIMD batches (issue 18): in 1D with every cell
+// Unit test of the limiter's SIMD batches: in 1D with every cell
 // examined, ModalLimiter analyses W interior cells at once (W = the SIMD
 // build's width, 8 lanes of AVX-512 here; 1 in a scalar build, where both
 // paths are one): jumps, neighbour differences, the characteristic or

@@ -1,4 +1,4 @@
-// Unit test of the line engine's SIMD batches (issue 18): LineOperator runs
+// Unit test of the line engine's SIMD batches: LineOperator runs
 // the interior cells of a line W at a time (W = the SIMD build's width, 8
 // lanes of AVX-512 here; 1 in a scalar build, where both paths are one) and
 // the rest cell by cell. For every 1D physics with a batched kernel --

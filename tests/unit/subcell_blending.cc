@@ -1,5 +1,5 @@
 // Unit test of subcell blending in the line engine (Limiter/subcell
-// blending, dg/subcell_blending.h; issue 21), on linear advection u_t + u_x = 0
+// blending, dg/subcell_blending.h), on linear advection u_t + u_x = 0
 // with the upwind flux, 40 periodic cells of (0, 1), degrees 1-4: a smooth
 // sine everywhere but in cell 20, which holds a jump (the L2 projection of a
 // step at the cell's 40 %).

@@ -1,5 +1,5 @@
 // Unit test of subcell blending in the 2D MatrixFree engine (Limiter/subcell
-// blending, dg/blended_cells.h; issue 21), on linear advection
+// blending, dg/blended_cells.h), on linear advection
 // u_t + b . grad u = 0, b = (1, 0.5), with the upwind flux, 40 x 40 periodic
 // cells of (0, 1)^2, degrees 1-3: a smooth 0.5 sin(2 pi x) sin(2 pi y) + 2
 // everywhere but in one cell, which holds a jump in x (the L2 projection of

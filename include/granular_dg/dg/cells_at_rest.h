@@ -11,6 +11,7 @@
 #include <algorithm>
 #include <cmath>
 #include <memory>
+#include <tuple>
 #include <vector>
 
 namespace granular_dg::dg
@@ -102,6 +103,12 @@ namespace granular_dg::dg
     updates() const
     {
       return {skipped_updates, all_updates};
+    }
+
+    void
+    set_updates(const std::pair<double, double> &counts)
+    {
+      std::tie(skipped_updates, all_updates) = counts;
     }
 
     /// Count a computed step (its batches as found last).

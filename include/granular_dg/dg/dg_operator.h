@@ -194,6 +194,9 @@ namespace granular_dg::dg
     std::pair<double, double>
     cell_updates_left_out() const override;
 
+    void
+    set_cell_updates_left_out(const std::pair<double, double> &counts) override;
+
     const std::vector<double> &
     blending_factors() const override
     {

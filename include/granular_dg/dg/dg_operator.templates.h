@@ -218,6 +218,19 @@ namespace granular_dg::dg
   }
 
   template <int dim, typename Physics, int width>
+  void
+  DGOperator<dim, Physics, width>::set_cell_updates_left_out(
+    const std::pair<double, double> &counts)
+  {
+    // rank 0 holds the sums, so that cell_updates_left_out() adds up to them
+    if (rest)
+      rest->set_updates(Utilities::MPI::this_mpi_process(
+                          data.get_vector_partitioner()->get_mpi_communicator()) == 0 ?
+                          counts :
+                          std::pair<double, double>(0., 0.));
+  }
+
+  template <int dim, typename Physics, int width>
   std::pair<double, double>
   DGOperator<dim, Physics, width>::cell_updates_left_out() const
   {

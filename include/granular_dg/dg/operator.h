@@ -157,6 +157,12 @@ namespace granular_dg::dg
       return {0., 0.};
     }
 
+    /// Continue the counts of cell_updates_left_out() from a checkpoint
+    /// (the sums over the ranks; collective).
+    virtual void
+    set_cell_updates_left_out(const std::pair<double, double> & /*counts*/)
+    {}
+
     /// Blend the DG rate with a first-order finite-volume rate on p + 1
     /// subcells, by a factor of at most alpha_max from the modal-energy
     /// indicator (SubcellBlending; Limiter/subcell blending). False if the

@@ -529,6 +529,12 @@ namespace granular_dg::dg
         active->save(w);
         w.io(limiter.troubled_cells());
       }
+    if (method.skip_at_rest)
+      {
+        auto counts = op->cell_updates_left_out();
+        w.io(counts.first);
+        w.io(counts.second);
+      }
   }
 
   template <int dim, typename Physics>
@@ -549,6 +555,13 @@ namespace granular_dg::dg
         r.io(flags);
         limiter.set_troubled_cells(flags);
         op->restrict_to(active.get()); // forget the cached wave speeds
+      }
+    if (method.skip_at_rest)
+      {
+        std::pair<double, double> counts;
+        r.io(counts.first);
+        r.io(counts.second);
+        op->set_cell_updates_left_out(counts);
       }
   }
 

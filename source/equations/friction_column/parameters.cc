@@ -39,7 +39,7 @@ namespace granular_dg::column
                       "The weights of the friction projection in the three SSP-RK3 "
                       "stages: consistent (dt, dt/4, 2dt/3: those of the explicit part, "
                       "so that a stuck state stays stuck) or printed (dt, dt/2, dt as "
-                      "printed in seed 000, for comparison).");
+                      "printed in Coffey & Gremaud, for comparison).");
     prm.declare_entry("smoothing", "0.01", Patterns::Double(),
                       "delta > 0 of the smoothed sgn (friction = explicit_smooth).");
     prm.leave_subsection();

@@ -1,5 +1,5 @@
 /**
- * The `column` scene: a granular column with Coulomb wall friction (seed 000,
+ * The `column` scene: a granular column with Coulomb wall friction (Coffey & Gremaud,
  * system.h), a wall load u(0, t) = u_b at z = 0 and an outflow end at z = L,
  * at rest initially. The friction inclusion is solved per cell and stage
  * (friction.h) or, for comparison, treated explicitly (the naive variants).

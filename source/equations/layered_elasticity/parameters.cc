@@ -136,7 +136,7 @@ namespace granular_dg::elasticity
 
     prm.enter_subsection("Physics");
     prm.declare_entry("stress law", "quadratic", law_names.pattern(),
-                      "quadratic: sigma = K eps + beta K^2 eps^2 (seed 001 (1.4); "
+                      "quadratic: sigma = K eps + beta K^2 eps^2 (eq. (1.4) of the central-upwind paper on layered elasticity; "
                       "linear for beta = 0); exponential: sigma = exp(K eps) - 1 (1.5).");
     prm.declare_entry("density", "1", Patterns::Double(),
                       "rho > 0 of material A (the homogeneous medium, or the even layers).");

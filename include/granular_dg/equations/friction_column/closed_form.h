@@ -8,7 +8,7 @@
 namespace granular_dg::column
 {
   /**
-   * The exact solution of the linear column (m = 1, G = 0) of seed 000,
+   * The exact solution of the linear column (m = 1, G = 0) of Coffey & Gremaud,
    * section 2: in the sliding region (v > 0) behind the pressure front z = t,
    * u solves u_tt - u_zz - u_z = 0 (2.14) and
    * \f[

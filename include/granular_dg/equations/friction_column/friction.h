@@ -15,7 +15,7 @@
 namespace granular_dg::column
 {
   /**
-   * The implicit friction step of seed 000 (section 3, steps 1-4), applied per
+   * The implicit friction step of Coffey & Gremaud (section 3, steps 1-4), applied per
    * cell after the explicit part of every Runge-Kutta stage. With the
    * orthonormal Legendre modes v_l of the velocity and
    *   R_l = int_0^1 sigma(u_h(xi)) L_l(xi) dxi  (R_0 >= 0),

@@ -3,7 +3,7 @@
 /**
  * @file
  * A granular column with Coulomb wall friction: the dynamical Janssen model of
- * Coffey & Gremaud (seed 000), in nondimensional Lagrangian form on z > 0:
+ * Coffey & Gremaud, in nondimensional Lagrangian form on z > 0:
  * \f[
  *   u_t - v_z = 0, \qquad
  *   v_t + \sigma(u)_z - G \in -\operatorname{sgn}(v)\,\sigma(u),

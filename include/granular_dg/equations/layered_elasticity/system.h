@@ -3,7 +3,7 @@
 /**
  * @file
  * Nonlinear elasticity in (possibly layered) media, after LeVeque & Yong (2003)
- * and Kurganov & Pollack (seed 001):
+ * and Kurganov & Pollack:
  * \f[
  *   \varepsilon_t - \nabla\cdot\mathbf u = 0, \qquad
  *   (\rho\mathbf u)_t - \nabla\sigma(\varepsilon) = 0,
@@ -45,7 +45,7 @@ namespace granular_dg::elasticity
 {
   using namespace dealii;
 
-  /// The stress-strain laws of seed 001.
+  /// The stress-strain laws (1.4) and (1.5) of the central-upwind paper.
   enum class StressLaw
   {
     quadratic,  ///< (1.4) sigma = K eps + beta K^2 eps^2

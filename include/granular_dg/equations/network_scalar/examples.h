@@ -3,7 +3,7 @@
 /**
  * @file
  * The exact solutions of the five examples of Section 7 of Musch, Fjordholm
- * & Risebro (seed 002) and of a smooth test, with the graph each expects.
+ * & Risebro (2022) and of a smooth test, with the graph each expects.
  * Edges are numbered as in prm/network_example_7_*.prm: the ingoing edges
  * (paper: -1, -2) first, then the roundabout (7.1), then the outgoing edges
  * (1, 2, 3). Every edge has length 1. What the copy of the paper gets wrong

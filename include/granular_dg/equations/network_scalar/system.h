@@ -5,7 +5,7 @@
  * Scalar conservation laws on the edges of a star network, after Musch,
  * Fjordholm & Risebro, "Well-posedness theory for nonlinear scalar
  * conservation laws on networks", Networks and Heterogeneous Media 17 (2022)
- * (seed 002; arXiv 2102.06400). On every edge k
+ * (Musch, Fjordholm & Risebro 2022; arXiv 2102.06400). On every edge k
  * \f[
  *   u^k_t + f^k(u^k)_x = 0, \qquad x \in (0, L_k),  \qquad (1.2), (2.1)
  * \f]
