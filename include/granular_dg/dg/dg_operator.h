@@ -303,9 +303,10 @@ namespace granular_dg::dg
     {
       return rest_use == RestUse::step && !rest->face_batch(f);
     }
-    /// rest_speed and sum_inverse_h of every cell batch
+    /// rest's tables for this mesh, and rest_speed and sum_inverse_h of
+    /// every cell batch
     void
-    tabulate_rest_speeds();
+    reinit_cells_at_rest();
     /// subcell blending (2D; off while blending_max = 0)
     const DoFHandler<dim>           *dof_handler  = nullptr;
     double                           blending_max = 0.;

@@ -167,13 +167,7 @@ namespace granular_dg::dg
     if constexpr (dim > 1)
       blending.reinit(dof_handler, phys, boundary, blending_max);
     if (rest)
-      {
-        rest->reinit(data, dof_handler, [&](const types::boundary_id id) {
-          const auto it = boundary.find(id);
-          return it != boundary.end() && it->second.data != nullptr;
-        });
-        tabulate_rest_speeds();
-      }
+      reinit_cells_at_rest();
   }
 
   template <int dim, typename Physics, int width>
@@ -183,20 +177,18 @@ namespace granular_dg::dg
   {
     rest = std::make_unique<CellsAtRest<dim, VA>>(tolerance, reach);
     if (dof_handler != nullptr)
-      {
-        rest->reinit(data, *dof_handler, [&](const types::boundary_id id) {
-          const auto it = boundary.find(id);
-          return it != boundary.end() && it->second.data != nullptr;
-        });
-        tabulate_rest_speeds();
-      }
+      reinit_cells_at_rest();
     return true;
   }
 
   template <int dim, typename Physics, int width>
   void
-  DGOperator<dim, Physics, width>::tabulate_rest_speeds()
+  DGOperator<dim, Physics, width>::reinit_cells_at_rest()
   {
+    rest->reinit(data, *dof_handler, [&](const types::boundary_id id) {
+      const auto it = boundary.find(id);
+      return it != boundary.end() && it->second.data != nullptr;
+    });
     // the rest state is zero (Physics::zero_is_rest_state)
     FEEvaluation<dim, -1, 0, n_components, Number, VA> phi(data);
     rest_speed.resize(data.n_cell_batches());
