@@ -18,7 +18,3 @@ engines_test(layered_1d ../prm/layered_1d.prm --set "Mesh/x max=40" --set "Mesh/
 # the hopper march: source term, symmetry and friction-wall boundaries
 engines_test(hopper hopper/base.prm --set "Hopper/cells=100"
   --set "Time stepping/final time=0.2" --set "Output/output interval=0.1")
-# the network's edges
-engines_test(network ../prm/network_example_7_3.prm --set "Discretization/degree=2"
-  --set "Limiter/scheme=componentwise" --set "Time stepping/CFL number=0.2"
-  --set "Network/cells per unit length=64")

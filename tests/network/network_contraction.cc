@@ -82,10 +82,8 @@ namespace
         max_ratio          = std::max(max_ratio, d_new / d);
         d                  = d_new;
         min_gap            = std::min(min_gap, v.vertex_value() - u.vertex_value());
-        for (unsigned int k = 0; k < 5; ++k)
-          for (unsigned int i = 0; i < u.state().edges[k].locally_owned_size(); ++i)
-            min_gap = std::min(min_gap, v.state().edges[k].local_element(i) -
-                                          u.state().edges[k].local_element(i));
+        for (std::size_t i = 0; i < u.state().edges.size(); ++i)
+          min_gap = std::min(min_gap, v.state().edges[i] - u.state().edges[i]);
       }
     std::cout << "vertex width factor " << width_factor << ": " << steps << " steps"
               << "\n  contraction at every step: " << (max_ratio <= 1 + 1e-13 ? "yes" : "no")

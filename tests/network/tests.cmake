@@ -122,6 +122,9 @@ granular_dg_test(network/bad_vertex_value PRM ../prm/network_example_7_4.prm
   ARGS --set "Network/vertex initial value=c0" EXIT 2 KEEP_OUTPUT)
 granular_dg_test(network/bad_initial_expression PRM ../prm/network_example_7_4.prm
   ARGS --set "Network/Edge 2/initial data=1 + y" EXIT 2 KEEP_OUTPUT)
+# The edges run in one line engine (EdgeLines): the MatrixFree engine is refused.
+granular_dg_test(network/engine_matrix_free PRM ../prm/network_example_7_3.prm
+  ARGS --set Discretization/engine=matrix_free EXIT 2 KEEP_OUTPUT)
 # Skipping quiet cells is not built for the network: a skip tolerance > 0
 # is refused (it was ignored).
 granular_dg_test(network/skip_tolerance PRM ../prm/network_example_7_4.prm

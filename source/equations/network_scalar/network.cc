@@ -1,10 +1,7 @@
 #include <deal.II/base/quadrature_lib.h>
-#include <deal.II/fe/fe_dgq.h>
-#include <deal.II/grid/grid_generator.h>
 
 #include <granular_dg/base/errors.h>
 #include <granular_dg/base/output.h>
-#include <granular_dg/dg/make_operator.h>
 #include <granular_dg/dg/solution_transfer.h>
 #include <granular_dg/equations/network_scalar/network.h>
 
@@ -19,48 +16,9 @@ namespace granular_dg::network
   void
   NetworkState::reinit(const NetworkState &other)
   {
-    edges.resize(other.edges.size());
-    for (unsigned int k = 0; k < edges.size(); ++k)
-      edges[k].reinit(other.edges[k]);
+    edges.assign(other.edges.size(), 0.);
     vertices.assign(other.vertices.size(), 0.);
   }
-
-  /// The value the vertex faces of the edges see (their Dirichlet data).
-  class NetworkProblem::VertexData : public Function<1>
-  {
-  public:
-    double u0 = 0.;
-    double
-    value(const Point<1> &, const unsigned int) const override
-    {
-      return u0;
-    }
-  };
-
-  struct NetworkProblem::EdgeDiscretisation
-  {
-    Triangulation<1>                  tria;
-    DoFHandler<1>                     dof_handler;
-    MappingQ1<1>                      mapping;
-    std::unique_ptr<dg::Operator<1>>  op;
-    std::unique_ptr<EdgeLimiter>      limiter;
-    dg::CellQuadrature<1>             quadrature;
-    /// layout cell numbers in the order of increasing x, and the vector
-    /// entries of their means (mode 0)
-    std::vector<unsigned int> order, means;
-    double                    h = 0;
-    /// the vector entries of the modes of the cells at x = 0 and x = L
-    std::array<std::vector<unsigned int>, 2> end_dofs;
-
-    const dg::ModalLayout<1> &
-    layout() const
-    {
-      return limiter->layout();
-    }
-    unsigned int first() const { return order.front(); }
-    unsigned int last() const { return order.back(); }
-    double left(const unsigned int c) const { return layout().cell(c)->vertex(0)[0]; }
-  };
 
   namespace
   {
@@ -69,10 +27,11 @@ namespace granular_dg::network
     /// until two levels agree to round-off, so a jump inside a cell is
     /// located to machine precision (exact cell averages, (4.11)).
     void
-    integrate_moments(const Function<1> &g, const unsigned int n_modes,
+    integrate_moments(const Function<1> &g, const std::vector<Polynomials::Legendre> &legendre,
                       const QGauss<1> &quad, const double x0, const double h, const double a,
                       const double b, std::vector<double> &result, const unsigned int depth)
     {
+      const unsigned int n_modes = legendre.size();
       auto moments = [&](const double lo, const double hi) {
         std::vector<double> m(n_modes, 0.);
         for (unsigned int q = 0; q < quad.size(); ++q)
@@ -80,9 +39,8 @@ namespace granular_dg::network
             const double x = lo + (hi - lo) * quad.point(q)[0];
             const double w = (hi - lo) * quad.weight(q);
             const double v = g.value(Point<1>(x));
-            const auto   L = dg::legendre_values(n_modes, (x - x0) / h);
             for (unsigned int k = 0; k < n_modes; ++k)
-              m[k] += w * v * L[k];
+              m[k] += w * v * legendre[k].value((x - x0) / h);
           }
         return m;
       };
@@ -103,44 +61,18 @@ namespace granular_dg::network
             result[k] += halves[k];
           return;
         }
-      integrate_moments(g, n_modes, quad, x0, h, a, mid, result, depth + 1);
-      integrate_moments(g, n_modes, quad, x0, h, mid, b, result, depth + 1);
+      integrate_moments(g, legendre, quad, x0, h, a, mid, result, depth + 1);
+      integrate_moments(g, legendre, quad, x0, h, mid, b, result, depth + 1);
     }
 
     /// whether every entry of v is finite (without a branch per entry)
     bool
-    all_finite(const dg::VectorType &v)
+    all_finite(const std::vector<double> &v)
     {
       bool ok = true;
       for (const double x : v)
         ok &= std::isfinite(x);
       return ok;
-    }
-
-    /// The boundary conditions of an edge: Dirichlet with the vertex value
-    /// at its vertex ends (vertex[b]: the function of the vertex at boundary
-    /// id b), the far-end data or outflow at a free end.
-    dg::BoundaryMap<1>
-    edge_boundary(const Edge &e, const EdgeData &d,
-                  const std::array<std::shared_ptr<Function<1>>, 2> &vertex)
-    {
-      dg::BoundaryMap<1> boundary;
-      for (const types::boundary_id b : {types::boundary_id(0), types::boundary_id(1)})
-        {
-          dg::BoundaryCondition<1> bc;
-          if (e.vertex_at(b))
-            {
-              bc.kind = dg::BoundaryKind::dirichlet;
-              bc.data = vertex[b];
-            }
-          else if (e.far_end == FarEnd::dirichlet)
-            {
-              bc.kind = dg::BoundaryKind::dirichlet;
-              bc.data = d.far_end;
-            }
-          boundary[b] = bc;
-        }
-      return boundary;
     }
   } // namespace
 
@@ -152,88 +84,83 @@ namespace granular_dg::network
     , data(std::move(edge_data))
     , exact(exact)
     , scene(scene)
-    , fe(std::make_unique<FESystem<1>>(FE_DGQLegendre<1>(disc.degree), 1))
   {
     AssertThrow(data.size() == net.edges.size(), ExcMessage("one EdgeData per edge"));
-    for (unsigned int v = 0; v < net.vertices.size(); ++v)
-      vertex_data.push_back(std::make_shared<VertexData>());
-    const auto vertex_function = [&](const unsigned int v) -> std::shared_ptr<Function<1>> {
-      return v == free_end ? nullptr : vertex_data[v];
-    };
     h_min = 1e300;
-    std::vector<double> h;
     for (const Edge &e : net.edges)
       {
         edge_cells.push_back(std::max(
           1u, static_cast<unsigned int>(std::lround(e.length * disc.cells_per_unit_length))));
-        h.push_back(e.length / edge_cells.back());
-        h_min = std::min(h_min, h.back());
+        edge_h.push_back(e.length / edge_cells.back());
+        h_min = std::min(h_min, edge_h.back());
       }
     ranks = std::make_unique<EdgePartition>(net, edge_cells, MPI_COMM_WORLD);
-    // the line engine whatever the number of ranks: every edge is a serial
-    // mesh, and the answer must not depend on the ranks
-    const dg::Engine engine = disc.engine == dg::Engine::automatic ? dg::Engine::line : disc.engine;
-    edge.resize(net.edges.size());
+
+    // this rank's edges in one line engine, in the partition's order
+    local_edge.assign(net.edges.size(), -1);
+    std::vector<FluxFunction> laws;
+    std::vector<unsigned int> cells;
+    std::vector<double>       sizes;
     for (const unsigned int k : ranks->edges())
       {
-        const Edge &e  = net.edges[k];
-        auto        ed = std::make_unique<EdgeDiscretisation>();
-        const unsigned int n = edge_cells[k];
-        GridGenerator::subdivided_hyper_rectangle(ed->tria, std::vector<unsigned int>{n},
-                                                  Point<1>(0.), Point<1>(e.length), true);
-        ed->h = h[k];
-        ed->dof_handler.reinit(ed->tria);
-        ed->dof_handler.distribute_dofs(*fe);
-
-        const auto   boundary =
-          edge_boundary(e, data[k], {{vertex_function(e.from), vertex_function(e.to)}});
-        const System system(e.flux, disc.flux);
-        ed->op = dg::make_operator<1>(engine, system, boundary);
-        ed->op->reinit(ed->mapping, ed->dof_handler);
-        if (disc.blending_max > 0)
-          AssertThrow(ed->op->set_subcell_blending(disc.blending_max), ExcInternalError());
-        ed->limiter = std::make_unique<EdgeLimiter>(system, disc.limiter, disc.tvb_M, boundary);
-        ed->limiter->reinit(ed->dof_handler);
-        ed->limiter->set_indicator(disc.indicator, disc.indicator_threshold);
-        ed->quadrature.reinit(ed->layout());
-
-        const auto &layout = ed->layout();
-        for (unsigned int c = 0; c < layout.n_owned(); ++c)
-          ed->order.push_back(c);
-        std::sort(ed->order.begin(), ed->order.end(), [&](unsigned int a, unsigned int b) {
-          return layout.cell(a)->vertex(0)[0] < layout.cell(b)->vertex(0)[0];
-        });
-        for (const unsigned int c : ed->order)
-          ed->means.push_back(layout.index(c, 0, 0));
-        for (unsigned int m = 0; m <= disc.degree; ++m)
-          {
-            ed->end_dofs[0].push_back(layout.index(ed->first(), 0, m));
-            ed->end_dofs[1].push_back(layout.index(ed->last(), 0, m));
-          }
-        edge[k] = std::move(ed);
+        local_edge[k] = laws.size();
+        laws.push_back(net.edges[k].flux);
+        cells.push_back(edge_cells[k]);
+        sizes.push_back(edge_h[k]);
       }
+    const EdgeMethod method{disc.degree,    disc.flux,      disc.limiter,
+                            disc.tvb_M,     disc.indicator, disc.indicator_threshold,
+                            disc.blending_max};
+    lines = std::make_unique<EdgeLines>(method, std::move(laws), cells, sizes);
+    for (const unsigned int k : ranks->edges())
+      for (const unsigned int side : {0u, 1u})
+        lines->kind(local(k), side) = net.edges[k].vertex_at(side) ? EndKind::vertex :
+                                      net.edges[k].far_end == FarEnd::dirichlet ?
+                                                                     EndKind::dirichlet :
+                                                                     EndKind::outflow;
 
-    const auto &first = *edge[ranks->edges().front()];
-    for (unsigned int m = 0; m <= disc.degree; ++m)
-      {
-        end_values[0].push_back(first.layout().value_at_0(m));
-        end_values[1].push_back(first.layout().value_at_1(m));
-      }
     auto ends = net.all_vertex_ends();
     for (unsigned int v = 0; v < net.vertices.size(); ++v)
       {
         double width = 0;
         for (const auto &end : ends[v])
-          width += 0.5 * h[end.edge];
+          width += 0.5 * edge_h[end.edge];
         junctions.emplace_back(net, v, std::move(ends[v]), disc.flux,
                                net.vertices[v].width_factor * width);
       }
 
+    // the end faces of this rank's edges at vertices and with far-end data
+    for (const unsigned int k : ranks->edges())
+      for (const unsigned int side : {0u, 1u})
+        if (net.edges[k].vertex_at(side))
+          vertex_faces.emplace_back(2 * local(k) + side,
+                                    side == 0 ? net.edges[k].from : net.edges[k].to);
+        else if (net.edges[k].far_end == FarEnd::dirichlet)
+          data_faces.emplace_back(k, side);
+    // where the trace of each end of this rank's vertices comes from (a
+    // vertex not cut has all its edges here)
+    std::vector<bool> here(net.vertices.size(), false);
+    for (const unsigned int v : ranks->vertices())
+      here[v] = true;
+    vertex_ends.first.assign(1, 0);
+    for (unsigned int v = 0; v < net.vertices.size(); ++v)
+      {
+        const auto &ends = junctions[v].ends();
+        for (unsigned int i = 0; here[v] && i < ends.size(); ++i)
+          {
+            const int          slot = ranks->slot(v, i);
+            const unsigned int k    = ends[i].edge;
+            vertex_ends.source.push_back(
+              slot >= 0 ? -1 - long(slot) :
+                          long(lines->index(local(k), ends[i].incoming ? edge_cells[k] - 1 : 0)));
+            vertex_ends.at_end.push_back(ends[i].incoming);
+          }
+        vertex_ends.first.push_back(vertex_ends.source.size());
+      }
     exchanged.assign(ranks->n_slots(), 0.);
     u.vertices.assign(net.vertices.size(), 0.);
-    u.edges.resize(edge.size());
-    for (const unsigned int k : ranks->edges())
-      edge[k]->op->initialize_vector(u.edges[k]);
+    vertex_u0.assign(net.vertices.size(), 0.);
+    u.edges.assign(lines->size(), 0.);
   }
 
   NetworkProblem::~NetworkProblem() = default;
@@ -285,7 +212,7 @@ namespace granular_dg::network
                     std::to_string(i.n_cells) + " cells, " + std::to_string(i.n_dofs) +
                     " DoFs, degree " + std::to_string(disc.degree) + ", " + integrator +
                     (ranks->parallel() ? "; " + ranks->describe() : "");
-    i.method.add("engine", edge[ranks->edges().front()]->op->engine_name());
+    i.method.add("engine", "line");
     i.method.add("numerical_flux", numerical_flux_names.name(disc.flux));
     i.method.add("limiter", disc.limiter_name);
     if (disc.blending_max > 0)
@@ -301,12 +228,7 @@ namespace granular_dg::network
   double
   NetworkProblem::trace(const unsigned int k, const bool at_end, const NetworkState &s) const
   {
-    const auto  &dofs  = edge[k]->end_dofs[at_end];
-    const double *value = at_end ? end_values[1].data() : end_values[0].data();
-    double        sum   = 0;
-    for (unsigned int m = 0; m < dofs.size(); ++m)
-      sum += s.edges[k].local_element(dofs[m]) * value[m];
-    return sum;
+    return lines->trace(s.edges.data(), local(k), at_end);
   }
 
   double
@@ -315,11 +237,11 @@ namespace granular_dg::network
     const QGauss<1> quad(disc.degree + 3);
     for (const unsigned int k : ranks->edges())
       {
-        const auto &layout = edge[k]->layout();
+        const double h = edge_h[k];
         data[k].initial->set_time(0.);
-        for (const unsigned int c : edge[k]->order)
+        for (unsigned int c = 0; c < edge_cells[k]; ++c)
           {
-            const double        x0 = edge[k]->left(c), h = layout.extent(c, 0);
+            const double        x0 = c * h;
             std::vector<double> moments(disc.degree + 1, 0.);
             // split at the known jumps first, then refine adaptively
             std::vector<double> pieces{x0, x0 + h};
@@ -328,10 +250,10 @@ namespace granular_dg::network
                 pieces.push_back(b);
             std::sort(pieces.begin(), pieces.end());
             for (unsigned int p = 0; p + 1 < pieces.size(); ++p)
-              integrate_moments(*data[k].initial, disc.degree + 1, quad, x0, h, pieces[p],
+              integrate_moments(*data[k].initial, lines->legendre(), quad, x0, h, pieces[p],
                                 pieces[p + 1], moments, 0);
             for (unsigned int m = 0; m <= disc.degree; ++m)
-              u.edges[k](layout.index(c, 0, m)) = moments[m] / h;
+              u.edges[lines->index(local(k), c) + m] = moments[m] / h;
           }
       }
     // the limiter sees the vertex values as the neighbours of the edge ends
@@ -340,10 +262,10 @@ namespace granular_dg::network
       {
         const auto &given = net.vertices[v].initial_value;
         u.vertices[v]     = given ? *given : balance_at(v, vertex_traces(u, v), 0.);
-        vertex_data[v]->u0 = u.vertices[v];
+        vertex_u0[v]  = u.vertices[v];
       }
-    for (const unsigned int k : ranks->edges())
-      edge[k]->limiter->apply(u.edges[k], 0.);
+    set_end_states(0.);
+    lines->limit(u.edges.data());
     exchange_traces(u);
     for (const unsigned int v : ranks->vertices())
       if (!net.vertices[v].initial_value || junctions[v].width() == 0)
@@ -393,12 +315,12 @@ namespace granular_dg::network
   NetworkProblem::vertex_traces(const NetworkState &s, const unsigned int v) const
   {
     trace_buffer.clear();
-    const auto &ends = junctions[v].ends();
-    for (unsigned int i = 0; i < ends.size(); ++i)
+    for (unsigned int i = vertex_ends.first[v]; i < vertex_ends.first[v + 1]; ++i)
       {
-        const int slot = ranks->slot(v, i);
-        trace_buffer.push_back(slot >= 0 ? exchanged[slot] :
-                                           trace(ends[i].edge, ends[i].incoming, s));
+        const long source = vertex_ends.source[i];
+        trace_buffer.push_back(source < 0 ?
+                                 exchanged[-1 - source] :
+                                 lines->trace_at(s.edges.data() + source, vertex_ends.at_end[i]));
       }
     return trace_buffer;
   }
@@ -489,11 +411,25 @@ namespace granular_dg::network
         const auto  &traces = vertex_traces(src, v);
         const double u0     = junctions[v].width() > 0 ? src.vertices[v] :
                                                          balance_at(v, traces, time);
-        vertex_data[v]->u0  = u0;
+        vertex_u0[v]        = u0;
         rates[v]            = junctions[v].rate(traces, u0);
       }
     stage_inflow.push_back(far_end_inflow(time, src));
+    set_end_states(time);
     return rates;
+  }
+
+  void
+  NetworkProblem::set_end_states(const double time) const
+  {
+    for (const auto &[face, v] : vertex_faces)
+      lines->outer_state(face / 2, face % 2) = vertex_u0[v];
+    for (const auto &[k, side] : data_faces)
+      {
+        data[k].far_end->set_time(time);
+        lines->outer_state(local(k), side) =
+          data[k].far_end->value(Point<1>(side == 0 ? 0. : net.edges[k].length));
+      }
   }
 
   void
@@ -503,10 +439,9 @@ namespace granular_dg::network
     // the vertex coupling is part of the right-hand side of the network
     StepPhases::Scope scope(phases, StepPhases::operator_apply);
     const auto       &rate = couple(time, src);
-    for (const unsigned int k : ranks->edges())
-      edge[k]->op->apply_stage(
-        time, src.edges[k], dst.edges[k],
-        dg::StageUpdate<>{s.old ? &s.old->edges[k] : nullptr, s.alpha, s.beta, s.gamma});
+    dst.edges.resize(src.edges.size());
+    lines->stage(src.edges.data(), dst.edges.data(), s.old ? s.old->edges.data() : nullptr,
+                 s.alpha, s.beta, s.gamma);
     dst.vertices.resize(src.vertices.size());
     for (const unsigned int v : ranks->vertices())
       dst.vertices[v] =
@@ -522,12 +457,11 @@ namespace granular_dg::network
         lo = std::min(lo, u.vertices[v]);
         hi = std::max(hi, u.vertices[v]);
       }
-    for (const auto &e : u.edges)
-      for (const double v : e)
-        {
-          lo = std::min(lo, v);
-          hi = std::max(hi, v);
-        }
+    for (const double v : u.edges)
+      {
+        lo = std::min(lo, v);
+        hi = std::max(hi, v);
+      }
     for (const unsigned int k : ranks->edges())
       for (const bool start : {true, false})
         if ((start ? net.edges[k].from : net.edges[k].to) == free_end &&
@@ -548,13 +482,11 @@ namespace granular_dg::network
     const auto [lo, hi] = bounds;
     const double tol    = 1e-12 * (hi - lo + std::max(std::abs(lo), std::abs(hi)));
     for (const unsigned int k : ranks->edges())
-      for (unsigned int i = 0; i < edge[k]->means.size(); ++i)
+      for (unsigned int c = 0; c < edge_cells[k]; ++c)
         {
-          const double v = s.edges[k].local_element(edge[k]->means[i]);
-          const unsigned int c = edge[k]->order[i];
+          const double v = s.edges[lines->index(local(k), c)];
           if (v < lo - tol || v > hi + tol)
-            throw failure(stage_time, int(k),
-                          edge[k]->left(c) + 0.5 * edge[k]->layout().extent(c, 0), v,
+            throw failure(stage_time, int(k), (c + 0.5) * edge_h[k], v,
                           "maximum principle violated: u outside [" + format_number(lo) +
                             ", " + format_number(hi) +
                             "], the range of the cell averages, vertex values and "
@@ -574,9 +506,9 @@ namespace granular_dg::network
       if (shared)
         exchange_traces(s);
       for (const unsigned int v : ranks->vertices())
-        vertex_data[v]->u0 = vertex_state(v, s, stage_time);
-      for (const unsigned int k : ranks->edges())
-        edge[k]->limiter->apply(s.edges[k], stage_time);
+        vertex_u0[v] = vertex_state(v, s, stage_time);
+      set_end_states(stage_time);
+      lines->limit(s.edges.data());
       if (shared)
         exchange_traces(s);
       for (const unsigned int v : ranks->vertices())
@@ -626,40 +558,32 @@ namespace granular_dg::network
       if (!std::isfinite(s.vertices[v]))
         throw failure(stage_time, -1 - int(v), 0., s.vertices[v], "vertex value is not finite");
     // (non-finite values fail this test too, and are reported as such below)
+    const bool finite = all_finite(s.edges);
     if (principle)
       {
-        bool finite = true;
-        for (const auto &e : s.edges)
-          for (const double v : e)
-            finite = finite && std::isfinite(v);
         if (finite)
           check_maximum_principle(s, stage_time);
       }
-    for (const unsigned int k : ranks->edges())
-      if (!all_finite(s.edges[k]))
-        {
-          // report the first cell whose modes are not finite
-          const auto &layout = edge[k]->layout();
-          for (const unsigned int c : edge[k]->order)
-            for (unsigned int m = 0; m <= disc.degree; ++m)
-              if (!std::isfinite(s.edges[k](layout.index(c, 0, m))))
-                throw failure(stage_time, int(k), edge[k]->left(c) + 0.5 * layout.extent(c, 0),
-                              s.edges[k](layout.index(c, 0, 0)), "state is not finite");
-        }
+    if (!finite)
+      // report the first cell whose modes are not finite
+      for (const unsigned int k : ranks->edges())
+        for (unsigned int c = 0; c < edge_cells[k]; ++c)
+          for (unsigned int m = 0; m <= disc.degree; ++m)
+            if (!std::isfinite(s.edges[lines->index(local(k), c) + m]))
+              throw failure(stage_time, int(k), (c + 0.5) * edge_h[k],
+                            s.edges[lines->index(local(k), c)], "state is not finite");
   }
 
   double
   NetworkProblem::time_step(const double time)
   {
-    double speed_over_h = 0;
-    for (const unsigned int k : ranks->edges())
-      speed_over_h = std::max(speed_over_h, edge[k]->op->max_speed_over_h(u.edges[k], 0.));
+    double speed_over_h = lines->max_speed_over_h(u.edges.data());
     for (const unsigned int v : ranks->vertices())
       for (const auto &end : junctions[v].ends())
         if (ranks->owns_edge(end.edge))
           speed_over_h = std::max(speed_over_h,
                                   std::abs(net.edges[end.edge].flux.derivative(u.vertices[v])) /
-                                    edge[end.edge]->h);
+                                    edge_h[end.edge]);
     const double dt = disc.cfl / ranks->max(speed_over_h);
     if (!(std::isfinite(dt) && dt > 0))
       throw RunError("time step is " + format_number(dt) + " at t = " + format_number(time) +
@@ -705,7 +629,8 @@ namespace granular_dg::network
   NetworkProblem::end_of_step(const double, const double, const unsigned long)
   {
     // one reduction for the step's diagnostics
-    double sums[3] = {local_mass(), inflow, local_total_variation()};
+    const auto local = local_sums();
+    double     sums[3] = {local[0], inflow, local[1]};
     ranks->sum(sums, 3);
     const double r       = (sums[0] - balance.mass0 - sums[1]) / balance.scale;
     balance.max_residual = std::max(balance.max_residual, std::abs(r));
@@ -735,15 +660,37 @@ namespace granular_dg::network
   double
   NetworkProblem::local_mass() const
   {
-    double m = 0;
+    return local_sums()[0];
+  }
+
+  std::array<double, 2>
+  NetworkProblem::local_sums() const
+  {
+    // mass: the vertices' part, then each edge's sum (as its own integral);
+    // TV: the jumps along the edges, then those at the vertices
+    double m = 0, tv = 0;
     for (const unsigned int v : ranks->vertices())
       if (ranks->reports_vertex(v))
         m += junctions[v].width() * u.vertices[v];
-    // (local_integral: without integrals()' vector and its reduction over
-    // the edge's one-rank communicator, once per edge and step)
+    const unsigned int n = lines->n_modes();
     for (const unsigned int k : ranks->edges())
-      m += edge[k]->quadrature.local_integral(u.edges[k], 0);
-    return m;
+      {
+        const double *mean      = u.edges.data() + lines->index(local(k), 0);
+        double        edge_mass = 0;
+        for (unsigned int c = 0; c < edge_cells[k]; ++c)
+          edge_mass += edge_h[k] * mean[c * n];
+        m += edge_mass;
+        for (unsigned int c = 0; c + 1 < edge_cells[k]; ++c)
+          tv += std::abs(mean[(c + 1) * n] - mean[c * n]);
+      }
+    for (const unsigned int v : ranks->vertices())
+      for (const auto &end : junctions[v].ends())
+        if (ranks->owns_edge(end.edge))
+          {
+            const unsigned int c = end.incoming ? edge_cells[end.edge] - 1 : 0;
+            tv += std::abs(u.vertices[v] - u.edges[lines->index(local(end.edge), c)]);
+          }
+    return {{m, tv}};
   }
 
   double
@@ -755,9 +702,8 @@ namespace granular_dg::network
         m += junctions[v].width() * std::abs(u.vertices[v]);
     for (const unsigned int k : ranks->edges())
       {
-        const auto &layout = edge[k]->layout();
-        for (const unsigned int c : edge[k]->order)
-          m += std::abs(u.edges[k](layout.index(c, 0, 0))) * layout.extent(c, 0);
+      for (unsigned int c = 0; c < edge_cells[k]; ++c)
+        m += std::abs(u.edges[lines->index(local(k), c)]) * edge_h[k];
       }
     return ranks->sum(m);
   }
@@ -783,29 +729,7 @@ namespace granular_dg::network
   double
   NetworkProblem::total_variation() const
   {
-    return ranks->sum(local_total_variation());
-  }
-
-  double
-  NetworkProblem::local_total_variation() const
-  {
-    double tv = 0;
-    for (const unsigned int k : ranks->edges())
-      {
-        const auto &means = edge[k]->means;
-        for (unsigned int i = 0; i + 1 < means.size(); ++i)
-          tv += std::abs(u.edges[k].local_element(means[i + 1]) -
-                         u.edges[k].local_element(means[i]));
-      }
-    for (const unsigned int v : ranks->vertices())
-      for (const auto &end : junctions[v].ends())
-        if (ranks->owns_edge(end.edge))
-        {
-          const auto        &e = *edge[end.edge];
-          const unsigned int c = end.incoming ? e.last() : e.first();
-          tv += std::abs(u.vertices[v] - u.edges[end.edge].local_element(e.layout().index(c, 0, 0)));
-        }
-    return tv;
+    return ranks->sum(local_sums()[1]);
   }
 
   NetworkErrors
@@ -814,14 +738,14 @@ namespace granular_dg::network
     NetworkErrors   e;
     const QGauss<1> quad(2 * disc.degree + 8);
     double          l2 = 0;
-    e.l1_per_edge.assign(edge.size(), 0.);
+    e.l1_per_edge.assign(net.edges.size(), 0.);
     for (const unsigned int k : ranks->edges())
       {
-        const auto &layout = edge[k]->layout();
-        const auto  breaks = solution.breakpoints(k, time);
-        for (const unsigned int c : edge[k]->order)
+        const auto   breaks = solution.breakpoints(k, time);
+        const double h      = edge_h[k];
+        for (unsigned int c = 0; c < edge_cells[k]; ++c)
           {
-            const double        x0 = edge[k]->left(c), h = layout.extent(c, 0);
+            const double        x0 = c * h;
             std::vector<double> pieces{x0, x0 + h};
             for (const double b : breaks)
               if (b > x0 && b < x0 + h)
@@ -832,7 +756,7 @@ namespace granular_dg::network
                 {
                   const double w = (pieces[p + 1] - pieces[p]) * quad.weight(q);
                   const double x = pieces[p] + (pieces[p + 1] - pieces[p]) * quad.point(q)[0];
-                  const double d = std::abs(layout.value(u.edges[k], c, 0, (x - x0) / h) -
+                  const double d = std::abs(lines->value(u.edges.data(), local(k), c, (x - x0) / h) -
                                             solution.value(k, x, time));
                   e.l1_per_edge[k] += w * d;
                   l2 += w * d * d;
@@ -873,13 +797,12 @@ namespace granular_dg::network
         sum += junctions[v].width() * std::abs(u.vertices[v] - other.u.vertices[v]);
     for (const unsigned int k : ranks->edges())
       {
-        const auto &layout = edge[k]->layout();
-        for (const unsigned int c : edge[k]->order)
+        for (unsigned int c = 0; c < edge_cells[k]; ++c)
           for (unsigned int q = 0; q < quad.size(); ++q)
-            sum += quad.weight(q) * layout.extent(c, 0) *
-                   std::abs(layout.value(u.edges[k], c, 0, quad.point(q)[0]) -
-                            other.edge[k]->layout().value(other.u.edges[k], c, 0,
-                                                          quad.point(q)[0]));
+            sum += quad.weight(q) * edge_h[k] *
+                   std::abs(lines->value(u.edges.data(), local(k), c, quad.point(q)[0]) -
+                            other.lines->value(other.u.edges.data(), other.local(k), c,
+                                               quad.point(q)[0]));
       }
     return ranks->sum(sum);
   }
@@ -887,16 +810,15 @@ namespace granular_dg::network
   std::vector<std::vector<std::pair<double, double>>>
   NetworkProblem::sample(const unsigned int points_per_cell) const
   {
-    std::vector<std::vector<std::pair<double, double>>> out(edge.size());
+    std::vector<std::vector<std::pair<double, double>>> out(net.edges.size());
     for (const unsigned int k : ranks->edges())
       {
-        const auto &layout = edge[k]->layout();
-        for (const unsigned int c : edge[k]->order)
+        for (unsigned int c = 0; c < edge_cells[k]; ++c)
           for (unsigned int j = 0; j < points_per_cell; ++j)
             {
               const double xi = points_per_cell == 1 ? 0.5 : j / double(points_per_cell - 1);
-              out[k].emplace_back(edge[k]->left(c) + xi * layout.extent(c, 0),
-                                  layout.value(u.edges[k], c, 0, xi));
+              out[k].emplace_back(c * edge_h[k] + xi * edge_h[k],
+                                  lines->value(u.edges.data(), local(k), c, xi));
             }
       }
     return out;
@@ -1010,10 +932,7 @@ namespace granular_dg::network
     if (disc.blending_max > 0)
       {
         // cells of all edges whose last stage blended in finite volumes
-        unsigned int blended = 0;
-        for (const auto &ed : edge)
-          blended += ed->op->n_blended_cells();
-        row.push_back(blended);
+        row.push_back(ranks->sum(double(lines->n_blended_cells())));
       }
     return row;
   }
@@ -1041,11 +960,11 @@ namespace granular_dg::network
     std::uint64_t n_vertices = vertices.size(), n_edges = modes.size();
     ar.io(n_vertices);
     ar.io(n_edges);
-    if (n_vertices != u.vertices.size() || n_edges != u.edges.size())
+    if (n_vertices != u.vertices.size() || n_edges != net.edges.size())
       throw RunError("the checkpoint's network has " + std::to_string(n_vertices) +
                      " vertices and " + std::to_string(n_edges) + " edges, this one " +
                      std::to_string(u.vertices.size()) + " and " +
-                     std::to_string(u.edges.size()));
+                     std::to_string(net.edges.size()));
     ar.io(total_inflow);
     for (double &v : vertices)
       ar.io(v);
@@ -1065,9 +984,10 @@ namespace granular_dg::network
   {
     // every edge's modes in the order of the graph, on rank 0 (which writes
     // the checkpoint): the file does not depend on the number of ranks
-    std::vector<std::vector<double>> modes(u.edges.size());
+    std::vector<std::vector<double>> modes(net.edges.size());
     for (const unsigned int k : ranks->edges())
-      modes[k].assign(u.edges[k].begin(), u.edges[k].end());
+      modes[k].assign(u.edges.begin() + lines->index(local(k), 0),
+                      u.edges.begin() + lines->index(local(k), edge_cells[k]));
     gather_edge_values(modes);
     auto   vertices     = vertex_values();
     double total_inflow = boundary_inflow();
@@ -1080,13 +1000,13 @@ namespace granular_dg::network
   {
     // every rank reads the whole state and keeps its edges
     std::vector<double>              vertices(u.vertices.size());
-    std::vector<std::vector<double>> modes(u.edges.size());
+    std::vector<std::vector<double>> modes(net.edges.size());
     double                           total_inflow = 0;
     state_io(r, vertices, modes, total_inflow);
     u.vertices = vertices;
     inflow     = ranks->rank() == 0 ? total_inflow : 0.;
     for (const unsigned int k : ranks->edges())
-      std::copy(modes[k].begin(), modes[k].end(), u.edges[k].begin());
+      std::copy(modes[k].begin(), modes[k].end(), u.edges.begin() + lines->index(local(k), 0));
   }
 
   void

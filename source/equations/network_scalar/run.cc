@@ -57,26 +57,32 @@ namespace granular_dg::network
 
   std::string
   NetworkProblem::write_vtu(const std::string &directory, const unsigned int index,
-                            const double time, const Samples &samples,
+                            const double time, Samples samples,
                             const std::vector<double> &vertices) const
   {
-    const unsigned int per_cell = vtu_points();
+    // one patch per edge through all its sample points (the points of a
+    // face appear twice, once with each cell's trace: the patch has a line
+    // of length 0 there)
     const GraphDrawing embed(net);
     std::vector<DataOutBase::Patch<1, 2>> patches;
+    patches.reserve(samples.size() + net.vertices.size());
+    std::vector<Point<2>>              points;
+    std::vector<std::array<double, 4>> values;
     for (unsigned int k = 0; k < samples.size(); ++k)
-      for (unsigned int c = 0; c * per_cell < samples[k].size(); ++c)
-        {
-          std::vector<Point<2>>              points;
-          std::vector<std::array<double, 4>> values;
-          for (unsigned int j = 0; j < per_cell; ++j)
-            {
-              const auto &[x, value] = samples[k][c * per_cell + j];
-              const auto p           = embed(k, x);
-              points.emplace_back(p[0], p[1]);
-              values.push_back({{value, net.edges[k].flux.value(value), x, double(k + 1)}});
-            }
+      {
+        points.clear();
+        values.clear();
+        for (const auto &[x, value] : samples[k])
+          {
+            const auto p = embed(k, x);
+            points.emplace_back(p[0], p[1]);
+            values.push_back({{value, net.edges[k].flux.value(value), x, double(k + 1)}});
+          }
+        if (!points.empty())
           patches.push_back(line_patch(points, values, patches.size()));
-        }
+        // (the samples of an edge are in its patch now)
+        Samples::value_type().swap(samples[k]);
+      }
     // every vertex: a patch of length 0 with its value (edge number 0)
     for (unsigned int v = 0; v < net.vertices.size(); ++v)
       {
@@ -154,19 +160,21 @@ namespace granular_dg::network
   {
     // gathered on rank 0, which writes the files (once when the VTU and the
     // profiles sample alike)
-    const auto    vertices = vertex_values();
-    const bool    vtu = disc.write_vtu, profiles = disc.profiles != Profiles::none;
-    const Samples vtu_samples = vtu ? gathered_sample(vtu_points()) : Samples();
-    const Samples profile_samples =
-      !profiles ? Samples() :
-      vtu && vtu_points() == profile_points() ? vtu_samples : gathered_sample(profile_points());
+    const auto vertices = vertex_values();
+    const bool vtu = disc.write_vtu, profiles = disc.profiles != Profiles::none;
+    Samples    vtu_samples = vtu ? gathered_sample(vtu_points()) : Samples();
+    if (profiles)
+      {
+        const bool same = vtu && vtu_points() == profile_points();
+        const Samples other = same ? Samples() : gathered_sample(profile_points());
+        if (ranks->rank() == 0)
+          write_profiles(directory, index, time, same ? vtu_samples : other, vertices);
+      }
     SnapshotFiles files;
     if (vtu)
       files.pvd_entry = files.main_file = snapshot_name("solution-", index, ".vtu");
     if (ranks->rank() == 0 && vtu)
-      write_vtu(directory, index, time, vtu_samples, vertices);
-    if (ranks->rank() == 0 && profiles)
-      write_profiles(directory, index, time, profile_samples, vertices);
+      write_vtu(directory, index, time, std::move(vtu_samples), vertices);
     if (files.main_file.empty())
       files.main_file = "profile files";
     return files;

@@ -203,17 +203,18 @@ namespace granular_dg::network
         }
     }
 
-    /// Memory of a network run, measured as peak RSS (2026-12, doc/network.md
-    /// "At set-up"): per edge its Triangulation, DoFHandler, operator and limiter
-    /// (a grid of 10224 edges of one cell); per cell the mesh, DoF and
-    /// operator data with their set-up peak (one edge of 10^6 and 2 10^6
-    /// cells) and per mode the state vectors (degree 2 against 0); per
-    /// sample point of a snapshot on rank 0 the gathered samples and the
-    /// VTU's patches, or the profiles alone.
-    constexpr double bytes_per_edge          = 32e3;
-    constexpr double bytes_per_cell          = 340.;
-    constexpr double bytes_per_mode          = 12.;
-    constexpr double vtu_bytes_per_point     = 270.;
+    /// Memory of a network run above the program's own (about 165 MB of
+    /// libraries), measured as peak RSS on the 224 x 224 city grid of
+    /// contrib/make_network_grid.py (100800 edges; doc/network.md, "Memory"):
+    /// per edge the graph, its data functions and the partition (one cell per
+    /// edge, degree 0); per cell and mode the state, the Runge-Kutta stage and
+    /// the last good state, and a checkpoint's gathered copy (16 cells per
+    /// edge, degrees 0 and 2); per sample point of a snapshot on rank 0 the
+    /// gathered samples and the VTU's patches and buffers, or the profiles.
+    constexpr double bytes_per_edge          = 1.1e3;
+    constexpr double bytes_per_cell          = 2.;
+    constexpr double bytes_per_mode          = 52.;
+    constexpr double vtu_bytes_per_point     = 115.;
     constexpr double profile_bytes_per_point = 16.;
 
     /// The cells of every edge at `cells` per unit length, as NetworkProblem
@@ -345,17 +346,14 @@ namespace granular_dg::network
       c.disc.degree         = method.degree;
       c.disc.flux           = numerical_flux_names.parse("Discretization/numerical flux",
                                                          method.flux);
-      c.disc.engine         = method.engine;
       c.disc.cfl            = method.cfl;
       c.disc.limiter        = method.limiter;
       c.disc.limiter_name   = method.limiter_name;
       c.disc.tvb_M          = method.tvb_M;
       c.disc.indicator      = method.indicator;
       c.disc.indicator_threshold = method.indicator_threshold;
-      require(method.blending_max == 0 || method.engine != dg::Engine::matrix_free,
-              "Limiter/subcell blending", "true",
-              "false with Discretization/engine = matrix_free (subcell blending is built in "
-              "the line engine, which the edges use by default)");
+      require(method.engine != dg::Engine::matrix_free, "Discretization/engine", "matrix_free",
+              "auto or line here: the network's edges run in one line engine (EdgeLines)");
       c.disc.blending_max = method.blending_max;
       c.disc.profile_points = method.profile_points;
       c.disc.write_vtu      = common.write_vtu;

@@ -1,18 +1,13 @@
 #pragma once
 
 #include <deal.II/base/function.h>
-#include <deal.II/dofs/dof_handler.h>
-#include <deal.II/fe/fe_system.h>
-#include <deal.II/fe/mapping_q1.h>
-#include <deal.II/grid/tria.h>
 
 #include <granular_dg/base/evolution.h>
 #include <granular_dg/base/run_parameters.h>
-#include <granular_dg/dg/cell_quadrature.h>
 #include <granular_dg/dg/limiter.h>
-#include <granular_dg/dg/operator.h>
 #include <granular_dg/dg/parameters.h>
 #include <granular_dg/dg/time_integrator.h>
+#include <granular_dg/equations/network_scalar/edge_lines.h>
 #include <granular_dg/equations/network_scalar/edge_partition.h>
 #include <granular_dg/equations/network_scalar/exact_solution.h>
 #include <granular_dg/equations/network_scalar/graph.h>
@@ -28,16 +23,14 @@
 
 namespace granular_dg::network
 {
-  using EdgeLimiter = dg::ModalLimiter<1, System>;
-
-  /// The state of the network: one DG vector per edge and the value of
-  /// every vertex. Has what dg::SSPRK3 needs of a vector. On several MPI
-  /// ranks a rank holds the vectors of its own edges (the others are empty)
-  /// and keeps the values of the vertices its edges meet.
+  /// The state of the network: the modes of the edges' cells (EdgeLines'
+  /// layout: edge after edge) and the value of every vertex. Has what
+  /// dg::SSPRK3 needs of a vector. On several MPI ranks a rank holds the
+  /// modes of its own edges and keeps the values of the vertices they meet.
   struct NetworkState
   {
-    std::vector<dg::VectorType> edges;
-    std::vector<double>         vertices;
+    std::vector<double> edges;
+    std::vector<double> vertices;
 
     void reinit(const NetworkState &other);
   };
@@ -62,7 +55,6 @@ namespace granular_dg::network
   {
     unsigned int      degree = 0;
     NumericalFlux     flux   = NumericalFlux::upwind;
-    dg::Engine        engine = dg::Engine::automatic;
     double            cfl    = 0.5;
     dg::LimiterType   limiter = dg::LimiterType::none;
     std::string       limiter_name = "none";
@@ -101,10 +93,9 @@ namespace granular_dg::network
 
   /**
    * The network as one discretisation and the Evolution the TimeLoop drives:
-   * per edge a Triangulation<1>, a DoFHandler with FE_DGQLegendre, a
-   * dg::Operator of the chosen engine (whose vertex face is a Dirichlet
-   * boundary with the current vertex value) and a limiter; the Junction
-   * couples them. apply_stage() is a Runge-Kutta stage of the whole network
+   * the cells of all edges of a rank in one line engine (EdgeLines), whose
+   * vertex faces take the current vertex value as their Dirichlet state; the
+   * Junction couples them. apply_stage() is a Runge-Kutta stage of the whole network
    * (edges and vertex), so dg::SSPRK3<NetworkState> and
    * dg::ForwardEuler<NetworkState> advance it.
    *
@@ -249,9 +240,11 @@ namespace granular_dg::network
     gathered_sample(unsigned int points_per_cell) const;
 
   private:
-    struct EdgeDiscretisation;
-    class VertexData;
-
+    /// the outer states of the edge ends at time: the values vertex_u0 of
+    /// their vertices, the far-end data
+    void   set_end_states(double time) const;
+    /// the local number of edge k in EdgeLines (this rank's edges)
+    unsigned int local(const unsigned int k) const { return local_edge[k]; }
     /// the trace of edge k at x = 0 (at_end false) or x = L (at_end true)
     double trace(unsigned int edge, bool at_end, const NetworkState &s) const;
     /// the vertex rates and the far-end inflow of the stage at src (the
@@ -281,9 +274,10 @@ namespace granular_dg::network
     /// Collective: values[k] of every edge k on rank 0 (each rank fills
     /// those of its edges).
     void gather_edge_values(std::vector<std::vector<double>> &values) const;
-    /// this rank's part of mass() and total_variation()
+    /// this rank's part of mass()
     double local_mass() const;
-    double local_total_variation() const;
+    /// this rank's mass and total variation in one pass
+    std::array<double, 2> local_sums() const;
     /// Junction::balance at vertex v; in parallel a failure is held (NaN is
     /// returned) until the stage's collective check reports it on every rank.
     double balance_at(unsigned int v, const std::vector<double> &traces, double time) const;
@@ -299,11 +293,12 @@ namespace granular_dg::network
       return disc.profile_points > 0 ? disc.profile_points : std::max(2u, disc.degree + 1);
     }
     /// rank 0: the files of a snapshot from the gathered samples and vertex
-    /// values
+    /// values (write_vtu releases the samples of each edge once they are in
+    /// its patch)
     void   write_profiles(const std::string &directory, unsigned int index, double t,
                           const Samples &profile, const std::vector<double> &vertices) const;
     std::string write_vtu(const std::string &directory, unsigned int index, double t,
-                          const Samples &samples, const std::vector<double> &vertices) const;
+                          Samples samples, const std::vector<double> &vertices) const;
     /// What a checkpoint holds (the modes of every edge, the vertex values,
     /// the far-end inflow and the diagnostics), written and read alike.
     template <typename Archive>
@@ -316,22 +311,35 @@ namespace granular_dg::network
     std::vector<EdgeData> data;
     const ExactSolution  *exact;
     std::string           scene;
-    /// one finite element for all edges
-    std::unique_ptr<FESystem<1>>                     fe;
     std::unique_ptr<EdgePartition>                   ranks;
-    /// cells of every edge
+    /// cells and cell size of every edge
     std::vector<unsigned int>                        edge_cells;
-    /// by edge number; null for the edges of other ranks
-    std::vector<std::unique_ptr<EdgeDiscretisation>> edge;
+    std::vector<double>                              edge_h;
+    /// the cells of this rank's edges; the local number of every edge (-1:
+    /// on another rank)
+    std::unique_ptr<EdgeLines>                       lines;
+    std::vector<int>                                 local_edge;
     /// the traces exchanged at the vertices shared by several ranks
     mutable std::vector<double>                      exchanged;
     /// a vertex balance that failed on this rank (parallel runs)
     mutable std::optional<std::string>               pending_error;
-    /// the Legendre modes' values at xi = 0 and xi = 1
-    std::array<std::vector<double>, 2>               end_values;
     mutable std::vector<double>                      trace_buffer;
+    /// the end faces of this rank's edges (2 local edge + side) at each
+    /// vertex, and the (edge, side) of the far ends with Dirichlet data
+    std::vector<std::pair<unsigned int, unsigned int>> vertex_faces, data_faces;
+    /// the ends of each vertex (CSR: those of v are first[v] .. first[v +
+    /// 1] - 1, in Junction::ends() order): the array index of the cell
+    /// whose trace it takes (source >= 0), or -1 - its slot in exchanged
+    /// (a vertex shared with other ranks); at_end: the trace at x = L
+    struct VertexEnds
+    {
+      std::vector<std::size_t>   first;
+      std::vector<long>          source;
+      std::vector<unsigned char> at_end;
+    } vertex_ends;
     std::vector<Junction>                            junctions;
-    std::vector<std::shared_ptr<VertexData>>         vertex_data;
+    /// the value the edges see at each vertex in the current stage
+    mutable std::vector<double>                      vertex_u0;
     NetworkState               u, last_good, benchmark_start;
     dg::SSPRK3<NetworkState>   rk3;
     /// inflow: this rank's far ends
