@@ -4,7 +4,7 @@ at degrees 1-4, and of deal.II's step-67 (Euler, MatrixFree) built from
 Debian's libdeal.ii-doc examples as the comparator. doc/performance.md.
 
     /usr/bin/python3 contrib/benchmark.py BUILD_DIR OUT_DIR [--quick] [--no-step67]
-        [--degrees 1,2,3,4] [--cases name,...] [--mpi] [--step67-dims 2,1]
+        [--degrees 1,2,3,4] [--cases name,...] [--mpi] [--step67-dims 2,1] [--reuse]
 
 OUT_DIR gets throughput.csv and throughput.md (the table of doc/performance.md)
 and one directory per run with its benchmark.json. step-67 is copied into
@@ -18,8 +18,6 @@ Rates are million DoF-stage updates per second per core (CPU time; median of
 the repetitions); the load average is recorded with every run. Run it alone:
 it runs one process at a time (two with --mpi).
 """
-import argparse
-import csv
 import json
 import os
 import re
@@ -27,14 +25,14 @@ import shutil
 import subprocess
 import sys
 
+from granular_dg import outputs, parser
+from granular_dg.run import ENV, NO_SNAPSHOTS, ROOT, load, run_case
+
 HERE = os.path.dirname(os.path.abspath(__file__))
-ROOT = os.path.dirname(HERE)
 STEP67 = "/usr/share/doc/libdeal.ii-doc/examples/step-67/step-67.cc"
-QUIET = ["--set", "Output/output times=", "--set", "Output/write vtu=false",
-         "--set", "Output/progress interval=0", "--set", "Output/overwrite=true",
-         # the shipped CFL numbers at every degree (above the SSP-RK3 limit at
-         # p >= 3 for some cases: a cost per step, not an accuracy statement)
-         "--set", "Time stepping/check stability limit=false"]
+# the shipped CFL numbers at every degree (above the SSP-RK3 limit at p >= 3
+# for some cases: a cost per step, not an accuracy statement)
+QUIET = NO_SNAPSHOTS + ("Time stepping/check stability limit=false",)
 
 # name: (prm, dim, extra --set overrides). Meshes as shipped, except the
 # network (degree 0 ships; the limiter is on for p >= 1 as in its study), and
@@ -72,46 +70,27 @@ CFL_LIMITS = [1.2563, 0.4095, 0.2097, 0.13, 0.0896]
 
 
 def cfl_override(prm, degree):
-    """--set the CFL number down to the limit of the degree when the case file's
+    """The CFL number down to the limit of the degree when the case file's
     is above it (the program refuses it; the time step does not change the
     cost of a step)."""
     with open(os.path.join(ROOT, prm)) as f:
         m = re.search(r"^\s*set CFL number\s*=\s*([\d.eE+-]+)", f.read(), re.M)
     if m and float(m[1]) > CFL_LIMITS[min(degree, 4)]:
-        return ["--set", "Time stepping/CFL number=%g" % CFL_LIMITS[min(degree, 4)]]
+        return ["Time stepping/CFL number=%g" % CFL_LIMITS[min(degree, 4)]]
     return []
-
-
-def load():
-    with open("/proc/loadavg") as f:
-        return " ".join(f.read().split()[:3])
 
 
 def run_ours(build, out, name, degree, quick, ranks=1, reuse=False):
     prm, dim, extra = CASES[name]
     d = os.path.join(out, "%s-p%d%s" % (name, degree, "-np%d" % ranks if ranks > 1 else ""))
-    if reuse and os.path.exists(os.path.join(d, "benchmark.json")):
-        return read_ours(d, name, dim, degree, ranks)
-    cmd = [os.path.join(build, "granular_dg"), "--benchmark", os.path.join(ROOT, prm),
-           "--set", "Output/directory=" + d, "--set", "Discretization/degree=%d" % degree,
-           "--set", "Benchmark/minimum time=%g" % (0.05 if quick else 0.3),
-           "--set", "Benchmark/repetitions=%d" % (3 if quick else 5)] + QUIET
-    for s in extra:
-        cmd += ["--set", s]
-    cmd += cfl_override(prm, degree)
-    if ranks > 1:
-        cmd = ["mpirun", "-np", str(ranks)] + cmd
-    env = dict(os.environ, OMPI_ALLOW_RUN_AS_ROOT="1", OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1")
-    p = subprocess.run(cmd, capture_output=True, text=True, env=env)
-    if p.returncode != 0:
-        print("FAILED %s p%d: %s" % (name, degree, (p.stderr or p.stdout).strip()[-300:]))
-        return None
-    return read_ours(d, name, dim, degree, ranks)
-
-
-def read_ours(d, name, dim, degree, ranks):
-    with open(os.path.join(d, "benchmark.json")) as f:
-        b = json.load(f)
+    if not (reuse and os.path.exists(os.path.join(d, "benchmark.json"))):
+        sets = ["Discretization/degree=%d" % degree, "Benchmark/minimum time=%g" % (0.05 if quick else 0.3),
+                "Benchmark/repetitions=%d" % (3 if quick else 5)] + list(QUIET) + extra + cfl_override(prm, degree)
+        r = run_case(build, prm, d, sets, ranks=ranks, benchmark=True, keep=False)
+        if r.code != 0:
+            print("FAILED %s p%d: %s" % (name, degree, r.stderr[-300:]))
+            return None
+    b = outputs.benchmark(d)
     return {"code": "granular_dg", "case": name, "dim": dim, "degree": degree, "ranks": ranks,
             "engine": b["case"]["engine"], "n_dofs": int(b["n_dofs"]),
             "steps": b["steps_per_repetition"] * b["repetitions"],
@@ -178,8 +157,8 @@ def run_step67(build, dim, degree, refinements, steps, reuse=False):
         subprocess.run(["cmake", "-S", d, "-B", d, "-DCMAKE_BUILD_TYPE=Release"], check=True,
                        stdout=subprocess.DEVNULL)
         subprocess.run(["make", "-C", d, "-j1", "step-67"], check=True, stdout=subprocess.DEVNULL)
-    before = load()
-    env = dict(os.environ, OMPI_ALLOW_RUN_AS_ROOT="1", OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1")
+    before = load(3)
+    env = dict(os.environ, **ENV)
     best = None
     for _ in range(3):  # repeated: the best CPU time
         p = subprocess.run([exe], cwd=d, capture_output=True, text=True, check=True, env=env)
@@ -194,7 +173,7 @@ def run_step67(build, dim, degree, refinements, steps, reuse=False):
             "engine": "matrix_free", "n_dofs": n_dofs, "steps": n_steps,
             "cpu_us_per_step": 1e6 * cpu / n_steps, "mdofs_step": rate, "mdofs_rk": rate,
             "mdofs_wall": n_dofs * stages * n_steps / wall / 1e6,
-            "load_before": before, "load_after": load()}
+            "load_before": before, "load_after": load(3)}
     with open(os.path.join(d, "result.json"), "w") as f:
         json.dump(r, f)
     return r
@@ -213,25 +192,21 @@ def write_tables(out, rows):
         # the whole step (limiter, admissibility, time step included) against
         # step-67's RK, which is its whole step
         r["step_ratio_to_step67"] = r["mdofs_step"] / ref if ref and r["code"] != "step-67" else ""
-    with open(os.path.join(out, "throughput.csv"), "w") as f:
-        w = csv.DictWriter(f, fieldnames=FIELDS)
-        w.writeheader()
-        for r in rows:
-            w.writerow({k: ("%.4g" % v if isinstance(v, float) else v) for k, v in r.items()})
+    outputs.write_csv(os.path.join(out, "throughput.csv"),
+                      [{k: ("%.4g" % r[k] if isinstance(r[k], float) else r[k]) for k in FIELDS} for r in rows])
     with open(os.path.join(out, "throughput.md"), "w") as f:
-        f.write("| code | case | dim | p | ranks | engine | DoFs | CPU us/step | MDoF/s/core step "
-                "| MDoF/s/core RK | MDoF/s wall | RK / step-67 | step / step-67 | load before -> after |\n")
-        f.write("|" + "---|" * 14 + "\n")
-        for r in rows:
-            ratios = ["%.2f" % r[k] if r[k] != "" else "" for k in ("ratio_to_step67", "step_ratio_to_step67")]
-            f.write("| %s | %s | %d | %d | %d | %s | %d | %.1f | %.1f | %.1f | %.1f | %s | %s | %s -> %s |\n" % (
-                r["code"], r["case"], r["dim"], r["degree"], r["ranks"], r["engine"], r["n_dofs"],
-                r["cpu_us_per_step"], r["mdofs_step"], r["mdofs_rk"], r["mdofs_wall"],
-                ratios[0], ratios[1], r["load_before"], r["load_after"]))
+        f.write(outputs.markdown(
+            ["code", "case", "dim", "p", "ranks", "engine", "DoFs", "CPU us/step", "MDoF/s/core step",
+             "MDoF/s/core RK", "MDoF/s wall", "RK / step-67", "step / step-67", "load before -> after"],
+            [[r["code"], r["case"], "%d" % r["dim"], "%d" % r["degree"], "%d" % r["ranks"], r["engine"],
+              "%d" % r["n_dofs"], "%.1f" % r["cpu_us_per_step"], "%.1f" % r["mdofs_step"], "%.1f" % r["mdofs_rk"],
+              "%.1f" % r["mdofs_wall"]] +
+             ["%.2f" % r[k] if r[k] != "" else "" for k in ("ratio_to_step67", "step_ratio_to_step67")] +
+             ["%s -> %s" % (r["load_before"], r["load_after"])] for r in rows]))
 
 
 def main():
-    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap = parser(__doc__)
     ap.add_argument("build")
     ap.add_argument("out")
     ap.add_argument("--quick", action="store_true", help="short repetitions (a smoke run)")

@@ -9,37 +9,20 @@ OUTPUT_DIR (default output/) holds hopper_<case>/ as written by
 all); PNGs go to FIGURE_DIR (default doc/figures/). A figure whose runs are
 missing is skipped with a note.
 """
-import glob
 import os
 import sys
 
-import matplotlib
-matplotlib.use('Agg')
-import matplotlib.pyplot as plt  # noqa: E402
-import numpy as np  # noqa: E402
+import numpy as np
+
+from granular_dg import outputs, plot
 
 OUT = sys.argv[1] if len(sys.argv) > 1 else 'output'
 FIG = sys.argv[2] if len(sys.argv) > 2 else os.path.join('doc', 'figures')
-os.makedirs(FIG, exist_ok=True)
+plt = plot.pyplot()
 
 
-def read_csv(path):
-    """A CSV of the program: optional '# ...' comment line, a header, rows."""
-    with open(path) as f:
-        first = f.readline()
-    skip = 1 if first.startswith('#') else 0
-    return np.genfromtxt(path, delimiter=',', names=True, skip_header=skip)
-
-
-def comment(path):
-    with open(path) as f:
-        line = f.readline()
-    return line[1:].strip() if line.startswith('#') else ''
-
-
-def tau_of(path):
-    c = comment(path)
-    return float(c.split('tau = ')[1].split(',')[0])
+def read(case, name):
+    return outputs.read_table(os.path.join(OUT, 'hopper_' + case, name))
 
 
 def have(*cases):
@@ -49,17 +32,15 @@ def have(*cases):
     return not missing
 
 
-def save(fig, name):
-    path = os.path.join(FIG, name)
-    fig.savefig(path, dpi=130, bbox_inches='tight')
-    plt.close(fig)
-    print('wrote ' + path)
+def save(fig, name, tight=True):
+    os.makedirs(FIG, exist_ok=True)
+    plot.save(fig, os.path.join(FIG, name), dpi=130, tight=tight, bbox_inches='tight', say=True)
 
 
 def fig9():
     if not have('fig9_scan'):
         return
-    d = read_csv(os.path.join(OUT, 'hopper_fig9_scan', 'fig9-scan.csv'))
+    d = read('fig9_scan', 'fig9-scan.csv')
     fig, ax = plt.subplots(figsize=(6.4, 5))
     T = d['Theta_w_deg']
     ax.plot(T, T, 'k:', lw=1, label=r'$\theta_w = \Theta_w$')
@@ -70,29 +51,24 @@ def fig9():
             label=r'lowest $\theta_w$ with hyperbolic data on $\Gamma_0$')
     ax.plot(T, d['admissible_lower_max_deg'], 'g-.',
             label=r'highest $\theta_w$ with hyperbolic data on $\Gamma_0$')
-    import json
-    s = json.load(open(os.path.join(OUT, 'hopper_fig9_scan', 'summary.json')))['diagnostics']
+    s = outputs.summary(os.path.join(OUT, 'hopper_fig9_scan'))['diagnostics']
     for key, txt in (('psi_monotone_up_to_deg', r'$\psi$ monotone up to %.2f$^\circ$'),
                      ('zero_transition_at_deg', r'no steeper transition from %.2f$^\circ$')):
         ax.axvline(s[key], color='gray', lw=0.8)
         ax.text(s[key] + 0.3, 2, txt % s[key], rotation=90, fontsize=8, color='gray')
     bar = os.path.join(OUT, 'hopper_march_range', 'range.csv')
     if os.path.exists(bar):
-        r = read_csv(bar)
+        r = outputs.read_table(bar)
         ok = r['completed'] > 0
         ax.plot(30 + 0 * r['theta_w'][ok], r['theta_w'][ok], 'rs', ms=4,
                 label=r'$\Theta_w = 30^\circ$: marched to $r = 0.05 r_0$ (N = 400)')
         ax.plot(30 + 0 * r['theta_w'][~ok], r['theta_w'][~ok], 'rx', ms=6,
                 label='lost hyperbolicity')
-    ax.set_xlim(T[0], T[-1] + 0.5)
-    ax.set_ylim(0, 60)
-    ax.set_xlabel(r'upper half-angle $\Theta_w$ (deg)')
-    ax.set_ylabel(r'lower half-angle $\theta_w$ (deg)')
-    ax.set_title(r'Fig. 9: admissible transitions, cone, $\delta = 32.1^\circ$, '
-                 r'$\mu = \tan 11.7^\circ$', fontsize=10)
+    ax.set(xlim=(T[0], T[-1] + 0.5), ylim=(0, 60))
+    plot.label(ax, r'upper half-angle $\Theta_w$ (deg)', r'lower half-angle $\theta_w$ (deg)',
+               r'Fig. 9: admissible transitions, cone, $\delta = 32.1^\circ$, $\mu = \tan 11.7^\circ$', size=10)
     ax.legend(fontsize=7, loc='upper left', bbox_to_anchor=(0.0, 0.93))
-    ax.grid(alpha=0.3)
-    save(fig, 'hopper_fig9_scan.png')
+    save(fig, 'hopper_fig9_scan.png', tight=False)
 
 
 def fig10():
@@ -100,18 +76,16 @@ def fig10():
         return
     fig, axes = plt.subplots(2, 2, figsize=(10, 7))
     for col, g, bound in ((0, 'wedge', 0.025), (1, 'cone', 0.5)):
-        d = read_csv(os.path.join(OUT, 'hopper_radial_' + g, 'hopper-steps.csv'))
+        d = read('radial_' + g, 'hopper-steps.csv')
         ax = axes[0, col]
         ax.plot(d['tau'], 100 * d['max_rel_diff_radial'], lw=0.8)
-        ax.set_title('%s, 30$^\\circ$, P1, N = 400 (paper: < %g %%)' % (g, bound), fontsize=10)
-        ax.set_xlabel(r'$\tau = -\ln(r/r_0)$')
-        ax.set_ylabel('max relative difference to the radial field (%)')
+        plot.label(ax, r'$\tau = -\ln(r/r_0)$', 'max relative difference to the radial field (%)',
+                   '%s, 30$^\\circ$, P1, N = 400 (paper: < %g %%)' % (g, bound), size=10)
         ax.set_ylim(bottom=0)
-        ax.grid(alpha=0.3)
         p = os.path.join(OUT, 'hopper_perturbed_' + g, 'hopper-steps.csv')
         ax = axes[1, col]
         if os.path.exists(p):
-            e = read_csv(p)
+            e = outputs.read_table(p)
             ax.semilogy(e['tau'], e['max_rel_diff_radial'], lw=0.8,
                         label=r'$T_{rr}(\tau = 0)$ perturbed by $10^{-3}$')
             kappa = 0.9272 if g == 'wedge' else -0.8075
@@ -121,44 +95,33 @@ def fig10():
                         lw=1, label=r'$e^{\kappa\tau}$, $\kappa$ = %+.3f (linearised DG spectrum)'
                         % kappa)
             ax.legend(fontsize=8)
-        ax.set_xlabel(r'$\tau$')
-        ax.set_ylabel('max relative difference')
-        ax.grid(alpha=0.3, which='both')
+        plot.label(ax, r'$\tau$', 'max relative difference')
     fig.suptitle('Fig. 10: preservation of the radial field (top); growth/decay of a '
                  'perturbation (bottom)', fontsize=11)
-    fig.tight_layout()
     save(fig, 'hopper_fig10_preservation.png')
 
 
-def profiles(case, axes, label=None, style='-'):
-    files = sorted(glob.glob(os.path.join(OUT, 'hopper_' + case, 'stress-*.csv')))
+def profiles(case, axes, label=None):
+    files = outputs.files(os.path.join(OUT, 'hopper_' + case), 'stress')
     cmap = plt.get_cmap('viridis')
-    taus = [tau_of(f) for f in files]
-    for k, (f, tau) in enumerate(zip(files, taus)):
-        d = read_csv(f)
-        c = cmap(k / max(1, len(files) - 1))
+    for k, d in enumerate(map(outputs.read_table, files)):
+        tau, c = d.value('tau'), cmap(k / max(1, len(files) - 1))
         for ax, name in zip(axes, ('T_rr_over_r', 'T_rtheta_over_r', 'T_thetatheta_over_r')):
-            ax.plot(d['theta_deg'], d[name] / 1e3, style, color=c, lw=1,
+            ax.plot(d['theta_deg'], d[name] / 1e3, color=c, lw=1,
                     label=(r'$\tau$ = %.2f' % tau) if ax is axes[0] else None)
     for ax, name in zip(axes, (r'$T_{rr}/r$', r'$T_{r\theta}/r$', r'$T_{\theta\theta}/r$')):
-        ax.set_xlabel(r'$\theta$ (deg)')
-        ax.set_ylabel(name + ' (kPa/m)')
-        ax.grid(alpha=0.3)
-        if label:
-            ax.set_title(label, fontsize=9)
+        plot.label(ax, r'$\theta$ (deg)', name + ' (kPa/m)', label, size=9)
     axes[0].legend(fontsize=7)
 
 
-def field_map(case, ax, name='T_rr_over_r', title=None):
-    d = read_csv(os.path.join(OUT, 'hopper_' + case, 'hopper-field.csv'))
+def field_map(case, ax, name, title):
+    d = read(case, 'hopper-field.csv')
     taus = np.unique(d['tau'])
     th = d['theta_deg'][d['tau'] == taus[0]]
-    Z = d[name].reshape(len(taus), len(th)) / 1e3
-    m = ax.pcolormesh(th, taus, Z, shading='auto', cmap='viridis')
-    ax.set_xlabel(r'$\theta$ (deg)')
-    ax.set_ylabel(r'$\tau = -\ln(r/r_0)$')
-    ax.set_title(title or name, fontsize=9)
-    plt.colorbar(m, ax=ax, label='kPa/m')
+    scale, cmap = (1, 'magma') if name == 'psi_deg' else (1e3, 'viridis')
+    m = ax.pcolormesh(th, taus, d[name].reshape(len(taus), len(th)) / scale, shading='auto', cmap=cmap)
+    plot.label(ax, r'$\theta$ (deg)', r'$\tau = -\ln(r/r_0)$', title, size=9, grid=0)
+    plt.colorbar(m, ax=ax, label='deg' if name == 'psi_deg' else 'kPa/m')
 
 
 def transition_figure(case, number, title):
@@ -167,24 +130,11 @@ def transition_figure(case, number, title):
     fig = plt.figure(figsize=(13, 7.5))
     axes = [fig.add_subplot(2, 3, i + 1) for i in range(3)]
     profiles(case, axes)
-    for i, (name, lab) in enumerate((('T_rr_over_r', r'$T_{rr}/r$'),
-                                     ('T_rtheta_over_r', r'$T_{r\theta}/r$'),
-                                     ('psi_deg', r'$\psi$ (deg)'))):
-        ax = fig.add_subplot(2, 3, 4 + i)
-        if name == 'psi_deg':
-            d = read_csv(os.path.join(OUT, 'hopper_' + case, 'hopper-field.csv'))
-            taus = np.unique(d['tau'])
-            th = d['theta_deg'][d['tau'] == taus[0]]
-            m = ax.pcolormesh(th, taus, d[name].reshape(len(taus), len(th)), shading='auto',
-                              cmap='magma')
-            plt.colorbar(m, ax=ax, label='deg')
-            ax.set_xlabel(r'$\theta$ (deg)')
-            ax.set_ylabel(r'$\tau$')
-            ax.set_title(r'Sokolovskii angle $\psi$ (limit 28.95$^\circ$)', fontsize=9)
-        else:
-            field_map(case, ax, name, lab + r' over $(\theta, \tau)$')
+    for i, (name, label) in enumerate((('T_rr_over_r', r'$T_{rr}/r$ over $(\theta, \tau)$'),
+                                       ('T_rtheta_over_r', r'$T_{r\theta}/r$ over $(\theta, \tau)$'),
+                                       ('psi_deg', r'Sokolovskii angle $\psi$ (limit 28.95$^\circ$)'))):
+        field_map(case, fig.add_subplot(2, 3, 4 + i), name, label)
     fig.suptitle('Fig. %s: %s' % (number, title), fontsize=11)
-    fig.tight_layout()
     save(fig, 'hopper_fig%s_%s.png' % (number, case))
 
 
@@ -196,7 +146,6 @@ def fig11():
     profiles('cone_30_24_p2', axes[1], r'P$^2$, N = 200')
     fig.suptitle(r'Fig. 11: cone $30^\circ \to 24^\circ$, P$^1$ N = 400 (top) vs P$^2$ '
                  r'N = 200 (bottom), stresses scaled by $r$', fontsize=11)
-    fig.tight_layout()
     save(fig, 'hopper_fig11_p1_p2.png')
 
 
@@ -205,7 +154,7 @@ def work_precision():
     if not os.path.exists(path):
         print('skipped (no run): work precision (contrib/hopper_runs.py precision)')
         return
-    d = read_csv(path)
+    d = outputs.read_table(path)
     fig, axes = plt.subplots(1, 2, figsize=(11, 4.6))
     colors = {1: 'C0', 2: 'C1', 3: 'C2'}
     panels = ((axes[0], ((0, '-', 'limiter'), (2, '--', 'no limiter')),
@@ -223,14 +172,10 @@ def work_precision():
                 for x, y, n in zip(d['cpu_march_s'][sel], d['l1_error'][sel], d['cells'][sel]):
                     ax.annotate('%d' % n, (x, y), fontsize=6, xytext=(2, 2),
                                 textcoords='offset points')
-        ax.set_xlabel('CPU time of the march (s; run minus a one-step run)')
-        ax.set_ylabel(r'relative L$^1$ error of $(T_{rr}, T_{r\theta})$')
-        ax.set_title(title, fontsize=9)
-        ax.grid(alpha=0.3, which='both')
-        ax.legend(fontsize=7)
+        plot.label(ax, 'CPU time of the march (s; run minus a one-step run)',
+                   r'relative L$^1$ error of $(T_{rr}, T_{r\theta})$', title, legend=7, size=9)
     fig.suptitle('Work-precision (labels: cells N; CFL 1/3, 1/5, 0.12 for P1, P2, P3; '
                  'characteristic minmod limiter, M = 0)', fontsize=10)
-    fig.tight_layout()
     save(fig, 'hopper_work_precision.png')
 
 

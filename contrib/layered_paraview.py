@@ -9,9 +9,10 @@ ARRAY defaults to stress. The path of the .pvd must be absolute.
 """
 import sys
 
-from paraview.simple import (ColorBy, CreateView, GetAnimationScene, GetColorTransferFunction,
-                             GetScalarBar, OpenDataFile, ResetCamera, SaveScreenshot, Show,
-                             Text)
+from paraview.simple import (ColorBy, GetAnimationScene, GetColorTransferFunction, OpenDataFile, ResetCamera,
+                             SaveScreenshot, Show)
+
+from granular_dg.paraview import scalar_bar, title, white_view
 
 pvd, png, time = sys.argv[1], sys.argv[2], float(sys.argv[3])
 array = sys.argv[4] if len(sys.argv) > 4 else 'stress'
@@ -22,14 +23,7 @@ if not any(abs(t - time) < 1e-9 * max(1, time) for t in times):
 scene = GetAnimationScene()
 scene.UpdateAnimationUsingDataTimeSteps()
 scene.AnimationTime = time
-view = CreateView('RenderView')
-view.ViewSize = [1800, 320]
-view.Background = [1, 1, 1]
-view.OrientationAxesVisibility = 0
-try:
-    view.UseColorPaletteForBackground = 0
-except AttributeError:
-    pass
+view = white_view([1800, 320])
 view.ViewTime = time
 display = Show(reader, view)
 ColorBy(display, ('POINTS', array))
@@ -37,20 +31,8 @@ display.RescaleTransferFunctionToDataRange(False, True)
 lut = GetColorTransferFunction(array)
 lut.ApplyPreset('Viridis (matplotlib)', True)
 display.SetScalarBarVisibility(view, True)
-bar = GetScalarBar(lut, view)
-bar.Title = array
-bar.ComponentTitle = ''
-bar.TitleColor = [0, 0, 0]
-bar.LabelColor = [0, 0, 0]
-bar.WindowLocation = 'Any Location'
-bar.Orientation = 'Vertical'
-bar.Position = [0.93, 0.08]
-bar.ScalarBarLength = 0.8
-title = Text(Text='layered strip (c): %s at t = %g' % (array, time))
-tdisplay = Show(title, view)
-tdisplay.Color = [0, 0, 0]
-tdisplay.FontSize = 14
-tdisplay.WindowLocation = 'Upper Left Corner'
+scalar_bar(lut, view, array, Orientation='Vertical', Position=[0.93, 0.08], ScalarBarLength=0.8)
+title(view, 'layered strip (c): %s at t = %g' % (array, time), 14, 'Upper Left Corner')
 view.InteractionMode = '2D'
 ResetCamera(view)
 view.CameraParallelProjection = 1

@@ -19,12 +19,10 @@ is snapped to the nearest time in solution.pvd). For doc/network.md:
 import os
 import sys
 
-from paraview.simple import (AssignViewToLayout, ColorBy, CreateLayout, ExtractSurface,
-                             GetColorTransferFunction, GetScalarBar, Glyph, OpenDataFile, Render,
-                             SaveScreenshot, Show, Text, Tube)
+from paraview.simple import (AssignViewToLayout, ColorBy, CreateLayout, ExtractSurface, GetColorTransferFunction,
+                             Glyph, OpenDataFile, Render, SaveScreenshot, Show, Tube)
 
-sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from network_paraview_common import threshold_edge, white_view  # noqa: E402
+from granular_dg.paraview import scalar_bar, threshold_edge, title, white_view
 
 directory = os.path.abspath(sys.argv[1])
 png = os.path.abspath(sys.argv[2])
@@ -78,10 +76,7 @@ for time in times:
         ColorBy(shown, ('POINTS', 'u'))
         shown.LookupTable = lut
         shown.SetScalarBarVisibility(view, False)
-    title = Show(Text(Text='t = %g' % time), view)
-    title.Color = [0, 0, 0]
-    title.FontSize = 22
-    title.WindowLocation = 'Upper Center'
+    title(view, 't = %g' % time, 22)
     Render(view)  # the first render resets the camera: set ours after it
     # top view of the square [-1, 6]^2, a margin for the tubes and the title
     view.CameraPosition = [2.5, 2.5, 20]
@@ -94,18 +89,8 @@ for time in times:
 # the colour bar alone in a narrow panel on the right
 bar_view = white_view([bar_width, panel_size[1]])
 AssignViewToLayout(view=bar_view, layout=layout, hint=cell)
-bar = GetScalarBar(lut, bar_view)
-bar.Title = 'density u'
-bar.ComponentTitle = ''
-bar.TitleColor = bar.LabelColor = [0, 0, 0]
-bar.TitleFontSize = 18
-bar.LabelFontSize = 16
-bar.WindowLocation = 'Any Location'
-bar.Position = [0.12, 0.12]
-bar.ScalarBarLength = 0.72
-bar.RangeLabelFormat = '%.2f'
-bar.ScalarBarThickness = 20
-bar.Visibility = 1
+scalar_bar(lut, bar_view, 'density u', TitleFontSize=18, LabelFontSize=16, Position=[0.12, 0.12],
+           ScalarBarLength=0.72, RangeLabelFormat='%.2f', ScalarBarThickness=20, Visibility=1)
 views.append(bar_view)
 
 lut.RescaleTransferFunction(0.0, u_max)  # showing can rescale; fix it again

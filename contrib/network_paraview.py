@@ -12,12 +12,10 @@ the snapshot (default: the last one).
 import os
 import sys
 
-from paraview.simple import (AssignViewToLayout, ColorBy, CreateLayout, ExtractSurface,
-                             GetColorTransferFunction, GetScalarBar, Glyph, OpenDataFile, Render,
-                             SaveScreenshot, Show, Text, Tube, UpdatePipeline, WarpByScalar)
+from paraview.simple import (AssignViewToLayout, ColorBy, CreateLayout, ExtractSurface, GetColorTransferFunction,
+                             Glyph, OpenDataFile, Render, SaveScreenshot, Show, Tube, UpdatePipeline, WarpByScalar)
 
-sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from network_paraview_common import threshold_edge, white_view  # noqa: E402
+from granular_dg.paraview import scalar_bar, threshold_edge, title, white_view
 
 directory = os.path.abspath(sys.argv[1])
 png = os.path.abspath(sys.argv[2])
@@ -48,23 +46,14 @@ tubes = Tube(Input=lines, Radius=0.018, NumberofSides=16)
 shown = Show(tubes, plane)
 ColorBy(shown, ('POINTS', 'u'))
 shown.LookupTable = lut
-bar = GetScalarBar(lut, plane)
-bar.Title = 'u'
-bar.ComponentTitle = ''
-bar.TitleColor = bar.LabelColor = [0, 0, 0]
-bar.WindowLocation = 'Any Location'
-bar.Position = [0.88, 0.08]
-bar.ScalarBarLength = 0.4
+scalar_bar(lut, plane, 'u', Position=[0.88, 0.08], ScalarBarLength=0.4)
 shown.SetScalarBarVisibility(plane, True)
 ball = Glyph(Input=threshold_edge(reader, -0.5, 0.5), GlyphType='Sphere', ScaleArray=['POINTS', 'No scale array'],
              ScaleFactor=0.09)
 ball_shown = Show(ball, plane)
 ColorBy(ball_shown, ('POINTS', 'u'))
 ball_shown.LookupTable = lut
-label = Text(Text='t = %g' % time)
-label_shown = Show(label, plane)
-label_shown.Color = [0, 0, 0]
-label_shown.FontSize = 14
+title(plane, 't = %g' % time, 14, 'Upper Left Corner')
 plane.CameraPosition = [0, 0, 6]
 plane.CameraFocalPoint = [0, 0, 0]
 plane.CameraViewUp = [0, 1, 0]
@@ -80,8 +69,7 @@ warp_shown = Show(warp_tubes, height)
 ColorBy(warp_shown, ('POINTS', 'u'))
 warp_shown.LookupTable = lut
 base = Show(tubes, height)
-base.DiffuseColor = [0.75, 0.75, 0.75]
-base.AmbientColor = [0.75, 0.75, 0.75]
+base.DiffuseColor = base.AmbientColor = [0.75, 0.75, 0.75]
 base.ColorArrayName = [None, "" ]
 height.CameraPosition = [0.6, -5.0, 1.6]
 height.CameraFocalPoint = [0, 0, 0.3]

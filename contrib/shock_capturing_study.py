@@ -20,7 +20,7 @@ on three cases, P2, on a ladder of meshes:
               cells, characteristic limiter; relative L1 of (T_rr, T_rtheta)/r at
               2001 theta against REF_DIR/hopper_ref/stress-0001.csv (P3, 800 cells)
 
-    contrib/shock_capturing_study.py BUILD_DIR OUT_DIR REF_DIR [--quick]
+    contrib/shock_capturing_study.py BUILD_DIR OUT_DIR REF_DIR [--quick] [--cases layered,...]
 
 Writes OUT_DIR/shock-capturing.csv and OUT_DIR/shock-capturing.png (one
 work-precision panel per case); runs whose directory has a summary.json are
@@ -38,17 +38,11 @@ reused. The references (doc/study/README.md):
       --set "Hopper output/step series interval=0" --set "Hopper output/sample points=2001" \\
       --set Output/directory=REF_DIR/hopper_ref
 """
-import argparse
-import csv
-import json
 import os
-import subprocess
 
-import matplotlib
-
-matplotlib.use("Agg")
-import matplotlib.pyplot as plt
-import numpy as np
+from granular_dg import outputs, parser, plot
+from granular_dg.compare import stress_l1, value_at
+from granular_dg.run import run_case
 
 # name: (limiter on, indicator, subcell blending)
 CONFIGS = {
@@ -59,8 +53,6 @@ CONFIGS = {
     "both": (True, "modal_energy", True),
 }
 STYLES = {"none": "k^:", "everywhere": "o-", "indicator": "D-.", "blending": "s--", "both": "v-"}
-
-HERE = os.path.dirname(os.path.abspath(__file__))
 CASES = {
     "layered": dict(prm="prm/layered_1d.prm", limiter="flux_variables", mesh="Mesh/cells x",
                     cells=[600, 1200, 2400], quick=[1200], ref="layered_ref/modes-0003.csv",
@@ -75,118 +67,72 @@ CASES = {
                    cells=[25, 50, 100, 200], quick=[50], ref="hopper_ref/stress-0001.csv",
                    title="hopper cone 30 -> 25, tau = 0.5, P2: rel. L1 (T_rr, T_rtheta)"),
 }
-HOPPER_SETS = ["Discretization/degree=2", "Time stepping/CFL number=0.2",
-               "Time stepping/final time=0.5", "Output/output times=",
-               "Hopper output/step series interval=0", "Hopper output/sample points=2001"]
+HOPPER_SETS = ["Discretization/degree=2", "Time stepping/CFL number=0.2", "Time stepping/final time=0.5",
+               "Output/output times=", "Hopper output/step series interval=0", "Hopper output/sample points=2001"]
 
 
-def hopper_l1(path, ref_path):
-    """Relative L1 difference of (T_rr, T_rtheta)/r over theta (contrib/hopper_runs.py)."""
-    def read(p):
-        with open(p) as f:
-            skip = 1 if f.readline().startswith("#") else 0
-        return np.genfromtxt(p, delimiter=",", names=True, skip_header=skip)
-    d, r = read(path), read(ref_path)
-    num = np.abs(d["T_rr_over_r"] - r["T_rr_over_r"]) + np.abs(d["T_rtheta_over_r"] - r["T_rtheta_over_r"])
-    den = np.abs(r["T_rr_over_r"]) + np.abs(r["T_rtheta_over_r"])
-    return float(np.trapz(num, d["theta"]) / np.trapz(den, d["theta"]))
-
-
-def profile_value(path, column, z):
-    """The mean of the values of column at x = z (both sides of a face)."""
-    d = np.genfromtxt(path, delimiter=",", skip_header=1, names=True)
-    at = np.isclose(d["x"], z, atol=1e-9)
-    if at.any():
-        return float(np.mean(d[column][at]))
-    return float(np.interp(z, d["x"], d[column]))
-
-
-def run(build, case, cells, config, out, ref_dir):
+def case_row(a, case, cells, config):
     c = CASES[case]
     limiter_on, indicator, blending = CONFIGS[config]
-    d = os.path.join(out, "%s-%s-%d" % (case, config, cells))
-    args = [os.path.join(build, "granular_dg"), os.path.join(HERE, "..", c["prm"]),
-            "--set", "Output/directory=" + d, "--set", "Output/overwrite=true",
-            "--set", "Output/write vtu=false", "--set", "Output/progress interval=0",
-            "--set", "%s=%d" % (c["mesh"], cells),
-            "--set", "Limiter/scheme=" + (c["limiter"] if limiter_on else "none"),
-            "--set", "Limiter/indicator=" + indicator,
-            "--set", "Limiter/subcell blending=%s" % ("true" if blending else "false")]
-    if case == "column":
-        args += ["--set", "Output/profile points per cell=3"]
-    elif case == "hopper":
-        for s in HOPPER_SETS:
-            args += ["--set", s]
-    else:
-        # (the shipped output times: the step lands on them, as in the shipped runs)
-        args += ["--set", "Exact solution/reference file=" + os.path.join(ref_dir, c["ref"])]
-    # a finished run is reused (its directory has summary.json)
-    if not os.path.exists(os.path.join(d, "summary.json")):
-        subprocess.run(args, check=True, stdout=subprocess.DEVNULL)
-    with open(os.path.join(d, "summary.json")) as f:
-        s = json.load(f)
+    ref = os.path.join(a.ref_dir, c["ref"])
+    sets = ["Output/write vtu=false", "%s=%d" % (c["mesh"], cells),
+            "Limiter/scheme=" + (c["limiter"] if limiter_on else "none"), "Limiter/indicator=" + indicator,
+            "Limiter/subcell blending=%s" % ("true" if blending else "false")]
+    # (layered and shock: the shipped output times, on which the step lands as in the shipped runs)
+    sets += {"column": ["Output/profile points per cell=3"], "hopper": HOPPER_SETS}.get(
+        case, ["Exact solution/reference file=" + ref])
+    r = run_case(a.build, c["prm"], os.path.join(a.out, "%s-%s-%d" % (case, config, cells)), sets,
+                 reuse=True, check=True)
+    s, last = r.summary, outputs.timeseries(r.directory).rows()[-1]
+    own = lambda name: outputs.read_table(os.path.join(r.directory, name))
     row = {"case": case, "config": config, "cells": cells, "n_dofs": s["n_dofs"],
            "time_loop_cpu_s": s["time_loop_cpu_s"]}
-    with open(os.path.join(d, "timeseries.csv")) as f:
-        last = list(csv.DictReader(f))[-1]
     if case == "column":
-        row["error"] = float(last["l1_error_strain"]) + float(last["l1_error_velocity"])
-        ref = os.path.join(ref_dir, c["ref"])
-        row["error_at_3_4"] = abs(profile_value(os.path.join(d, "profile-0003.csv"), "strain", 3.) -
-                                  profile_value(ref, "strain", 3.))
+        row["error"] = float(last["l1_error_strain"] + last["l1_error_velocity"])
+        row["error_at_3_4"] = abs(value_at(own("profile-0003.csv"), "strain", 3.)
+                                  - value_at(outputs.read_table(ref), "strain", 3.))
     elif case == "hopper":
-        row["error"] = hopper_l1(os.path.join(d, "stress-0001.csv"), os.path.join(ref_dir, c["ref"]))
+        row["error"] = stress_l1(own("stress-0001.csv"), outputs.read_table(ref))
     else:
-        row["error"] = s["errors"]["component_0_l1_l2_linf"][0]
-        row["min_strain"] = s["diagnostics"]["min_strain"]
-        row["max_strain"] = s["diagnostics"]["max_strain"]
-    row["blended_cells_end"] = int(float(last.get("blended_cells", 0)))
-    row["flagged_cells_end"] = int(float(last.get("flagged_cells", 0)))
+        row.update(error=s["errors"]["component_0_l1_l2_linf"][0], min_strain=s["diagnostics"]["min_strain"],
+                   max_strain=s["diagnostics"]["max_strain"])
+    row["blended_cells_end"] = int(last.get("blended_cells", 0))
+    row["flagged_cells_end"] = int(last.get("flagged_cells", 0))
     return row
 
 
+def chart(rows, cases, path):
+    nrows = 1 if len(cases) <= 2 else 2
+    ncols = (len(cases) + nrows - 1) // nrows
+    fig, axes = plot.subplots(nrows, ncols, figsize=(5.5 * ncols, 4.3 * nrows), squeeze=False)
+    for ax in axes.flat[len(cases):]:
+        ax.set_visible(False)
+    for ax, case in zip(axes.flat, cases):
+        for config in CONFIGS:
+            sel = [r for r in rows if r["case"] == case and r["config"] == config]
+            ax.loglog([r["time_loop_cpu_s"] for r in sel], [r["error"] for r in sel], STYLES[config], label=config)
+        plot.label(ax, "CPU time of the time loop [s]", title=CASES[case]["title"], size=9)
+    for row in axes:
+        row[0].set_ylabel("error against the reference")
+    axes[0][0].legend(fontsize=8)
+    plot.save(fig, path)
+
+
 def main():
-    p = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    p = parser(__doc__)
     p.add_argument("build")
     p.add_argument("out")
     p.add_argument("ref_dir")
     p.add_argument("--quick", action="store_true", help="one mesh per case")
     p.add_argument("--cases", default=",".join(CASES))
     a = p.parse_args()
-    rows = []
-    for case in a.cases.split(","):
-        for config in CONFIGS:
-            for cells in CASES[case]["quick" if a.quick else "cells"]:
-                rows.append(run(a.build, case, cells, config, a.out, a.ref_dir))
-                print(rows[-1], flush=True)
-    os.makedirs(a.out, exist_ok=True)
-    keys = []
-    for r in rows:
-        keys += [k for k in r if k not in keys]
-    with open(os.path.join(a.out, "shock-capturing.csv"), "w") as f:
-        w = csv.DictWriter(f, fieldnames=keys)
-        w.writeheader()
-        w.writerows(rows)
-
-    cases = a.cases.split(",")
-    nrows = 1 if len(cases) <= 2 else 2
-    ncols = (len(cases) + nrows - 1) // nrows
-    fig, axes = plt.subplots(nrows, ncols, figsize=(5.5 * ncols, 4.3 * nrows), squeeze=False)
-    for ax in axes.flat[len(cases):]:
-        ax.set_visible(False)
-    for ax, case in zip(axes.flat, cases):
-        for config in CONFIGS:
-            sel = [r for r in rows if r["case"] == case and r["config"] == config]
-            ax.loglog([r["time_loop_cpu_s"] for r in sel], [r["error"] for r in sel],
-                      STYLES[config], label=config)
-        ax.set_title(CASES[case]["title"], fontsize=9)
-        ax.set_xlabel("CPU time of the time loop [s]")
-        ax.grid(alpha=0.3, which="both")
-    for row in axes:
-        row[0].set_ylabel("error against the reference")
-    axes[0][0].legend(fontsize=8)
-    fig.tight_layout()
-    fig.savefig(os.path.join(a.out, "shock-capturing.png"), dpi=110)
+    cases, rows = a.cases.split(","), []
+    for case, config in ((case, config) for case in cases for config in CONFIGS):
+        for cells in CASES[case]["quick" if a.quick else "cells"]:
+            rows.append(case_row(a, case, cells, config))
+            print(rows[-1], flush=True)
+    outputs.write_csv(os.path.join(a.out, "shock-capturing.csv"), rows)
+    chart(rows, cases, os.path.join(a.out, "shock-capturing.png"))
 
 
 if __name__ == "__main__":

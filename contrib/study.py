@@ -1,32 +1,16 @@
 #!/usr/bin/python3
-"""Speed against accuracy across the scenes: work-precision charts,
-stability maps CFL x degree x (flux, limiter) with the limits found by
-bisection, the cheapest configuration reaching two target errors per scene,
-and where the methods fail (contrib/study_failures.py).
+"""Speed against accuracy across the scenes: work-precision charts (SCENES
+below), stability maps CFL x degree x (flux, limiter) with the limits found by
+bisection (STABILITY), the cheapest configuration reaching two target errors
+per scene, and where the methods fail (study_failures.py); the files are
+listed in doc/study/README.md.
 
     /usr/bin/python3 contrib/study.py BUILD_DIR OUT_DIR [--quick] [--jobs N]
         [--only scene,...] [--skip-work-precision] [--skip-stability] [--skip-failures]
 
-OUT_DIR (doc/study for the committed charts) gets
-  S-work-precision.{png,svg,csv}  per scene S: error against CPU time of the
-                                  time loop and against the wall time of the
-                                  run, one curve per degree (log-log);
-  M-stability.{png,svg,csv}       per stability map M (STABILITY below): CFL x
-                                  degree, one panel per (flux, limiter) choice,
-                                  every run marked, the bisected limits;
-  stability-limits.{csv,md}       the limits of all maps;
-  failure-F.{png,svg,csv}         per failure mode F (contrib/study_failures.py);
-  failures.md                     the numbers of the failure charts;
-  cheapest.{csv,md}, runtime.txt.
-Runs go to OUT_DIR/runs/ (reused when their summary.json exists; delete to
-rerun). Runs go --jobs at a time (default 2); the charted CPU times are
-those of each process. doc/study/README.md reads the charts.
-
-The per-scene work-precision description (SCENES below): the case file, the
-mesh parameter and its values, the degrees, the CFL number (per degree), how
-the error against the exact solution is read from summary.json, the two
-target errors. The stability maps (STABILITY): case, mesh, error, degrees and
-the (flux, limiter) choices.
+Runs go to OUT_DIR/runs/, --jobs at a time (default 2), and are reused when
+they are there (delete them to rerun); the charted CPU times are those of
+each process.
 
 Classification of a stability run (fixed mesh, to the final time):
   blown up      exit 3 with a non-finite state, or an error > the map's
@@ -50,33 +34,19 @@ The grid: CFL = f/(2p+1), f in {0.5, 1, 1.5, 2, 3} (the linear wave: 0.25 to
 while every run is stable, on with f = 5, 8, 12 (limited schemes stay bounded
 far beyond the linear limit).
 """
-import argparse
-import concurrent.futures
-import csv
-import json
 import math
 import os
-import subprocess
 import sys
 import threading
 import time
 
-import matplotlib
+from granular_dg import outputs, parser, plot
+from granular_dg.compare import stress_l1
+from granular_dg.run import NO_SNAPSHOTS, finished, load, pmap, run_case, tag
 
-matplotlib.use("Agg")
-import matplotlib.pyplot as plt  # noqa: E402
+import study_failures
 
-# reproducible SVG files (no date, fixed element ids): regenerated charts of
-# the same runs are byte-identical
-plt.rcParams["svg.hashsalt"] = "granular_dg study"
-
-HERE = os.path.dirname(os.path.abspath(__file__))
-ROOT = os.path.dirname(HERE)
-sys.path.insert(0, HERE)
-import study_failures  # noqa: E402
-
-QUIET = ["Output/output times=", "Output/write vtu=false", "Output/progress interval=0",
-         "Output/overwrite=true"]
+plt = plot.pyplot()
 # SSP-RK3 with upwind DG of degree p on u_t + u_x = 0: the linear stability
 # limit of nu = a dt/h (Fourier analysis, contrib/dg_cfl_limits.py)
 LINEAR_RK3 = {0: 1.256373, 1: 0.409590, 2: 0.209754, 3: 0.130094, 4: 0.089687}
@@ -101,17 +71,8 @@ def network_l1(s, d):
 def hopper_radial(s, d):
     """Relative L1 error of (T_rr, T_rtheta)/r against the exact radial field
     at 2001 equidistant theta (doc/hopper.md 4.7, contrib/hopper_runs.py)."""
-    import numpy as np
     path = os.path.join(d, "stress-0001.csv")
-    if not os.path.exists(path):
-        return float("nan")
-    with open(path) as f:
-        skip = 1 if f.readline().startswith("#") else 0
-    t = np.genfromtxt(path, delimiter=",", names=True, skip_header=skip)
-    num = np.abs(t["T_rr_over_r"] - t["radial_T_rr_over_r"]) + \
-        np.abs(t["T_rtheta_over_r"] - t["radial_T_rtheta_over_r"])
-    den = np.abs(t["radial_T_rr_over_r"]) + np.abs(t["radial_T_rtheta_over_r"])
-    return float(np.trapz(num, t["theta"]) / np.trapz(den, t["theta"]))
+    return stress_l1(outputs.read_table(path)) if os.path.exists(path) else float("nan")
 
 
 def cpu_loop(s):
@@ -265,123 +226,51 @@ QUICK_FACTORS = [0.5, 1.5]
 EXTEND_FACTORS = [5.0, 8.0, 12.0]
 
 
-def load():
-    with open("/proc/loadavg") as f:
-        return f.read().split()[0]
-
-
-COUNT = {"executed": 0, "reused": 0}
-COUNT_LOCK = threading.Lock()
-
-
-def count(what):
-    with COUNT_LOCK:
-        COUNT[what] += 1
-
-
-def run(build, d, prm, sets):
-    """granular_dg PRM with --set overrides into directory d; reused when
-    d/summary.json and d/exit.txt exist. Returns (exit code, summary, stderr)."""
-    done = os.path.join(d, "exit.txt")
-    if os.path.exists(done) and os.path.exists(os.path.join(d, "summary.json")):
-        count("reused")
-        with open(done) as f:
-            code, err = f.read().split("\n", 1)
-        with open(os.path.join(d, "summary.json")) as f:
-            return int(code), json.load(f), err
-    os.makedirs(d, exist_ok=True)
-    count("executed")
-    cmd = [os.path.join(build, "granular_dg"), os.path.join(ROOT, prm), "--set", "Output/directory=" + d]
-    for s in QUIET + sets:
-        cmd += ["--set", s]
-    l0 = load()
-    t0 = time.time()
-    # a singleton MPI start without its daemon: 0.2 s less per run here
-    env = dict(os.environ, OMPI_MCA_ess_singleton_isolated="1")
-    p = subprocess.run(cmd, capture_output=True, text=True, env=env)
-    wall = time.time() - t0
-    err = p.stderr.strip().replace("\n", " ")
-    s = {}
-    if os.path.exists(os.path.join(d, "summary.json")):
-        with open(os.path.join(d, "summary.json")) as f:
-            s = json.load(f)
-    s["_run_wall_s"] = wall
-    s["_load"] = l0
-    with open(os.path.join(d, "summary.json"), "w") as f:
-        json.dump(s, f)
-    with open(done, "w") as f:
-        f.write("%d\n%s" % (p.returncode, err))
-    return p.returncode, s, err
-
-
-def tag(v):
-    return ("%.6g" % v).replace(".", "_")
-
-
-def write_csv(path, rows):
-    if not rows:
-        return
-    keys = []
-    for r in rows:
-        keys += [k for k in r if k not in keys]
-    with open(path, "w") as f:
-        w = csv.DictWriter(f, fieldnames=keys)
-        w.writeheader()
-        w.writerows(rows)
-
-
-def savefig(fig, out, name):
-    for ext in ("png", "svg"):
-        fig.savefig(os.path.join(out, "%s.%s" % (name, ext)), dpi=110,
-                    metadata={"Date": None} if ext == "svg" else None)
-    plt.close(fig)
-
-
-def save(fig, out, name):
-    fig.tight_layout()
-    savefig(fig, out, name)
-
-
 class Context:
     """What the parts of the study share: where to run and write, and how."""
 
     def __init__(self, build, out, quick, jobs):
         self.build, self.out, self.quick, self.jobs = build, out, quick, jobs
-        self.write_csv, self.save, self.tag = write_csv, save, tag
         self.linear_rk3 = LINEAR_RK3
-        self.failure_notes = []
-
-    def run(self, d, prm, sets):
-        return run(self.build, os.path.join(self.out, "runs", d), prm, sets)
+        self.count, self.lock = {"executed": 0, "reused": 0}, threading.Lock()
 
     def rundir(self, d):
         return os.path.join(self.out, "runs", d)
 
+    def run(self, d, prm, sets):
+        """The run d of prm without snapshots with the --set overrides sets;
+        reused when it is there (delete it to rerun)."""
+        with self.lock:
+            self.count["reused" if finished(self.rundir(d)) else "executed"] += 1
+        return run_case(self.build, prm, self.rundir(d), NO_SNAPSHOTS + tuple(sets), reuse=True)
+
     def pmap(self, f, items):
         """f over items, --jobs at a time, results in order."""
-        items = list(items)
-        if self.jobs <= 1 or len(items) <= 1:
-            return [f(i) for i in items]
-        with concurrent.futures.ThreadPoolExecutor(self.jobs) as ex:
-            return list(ex.map(f, items))
+        return pmap(f, items, self.jobs)
+
+    def csv(self, name, rows):
+        outputs.write_csv(os.path.join(self.out, name + ".csv"), rows)
+
+    def save(self, fig, name, tight=True):
+        plot.save(fig, os.path.join(self.out, name + ".png"), "svg", tight=tight)
 
 
 def work_precision(ctx, name, sc):
     degrees = sc["quick_degrees"] if ctx.quick else sc["degrees"]
     cells = sc["quick_cells"] if ctx.quick else sc["cells"]
+
     def one(item):
         p, n = item
         cfl = sc["cfl"](p)
-        d = os.path.join(name, "wp-p%d-n%d" % (p, n))
-        code, s, err = ctx.run(d, sc["prm"], sc["extra"] + [
-            "Discretization/degree=%d" % p, "%s=%d" % (sc["mesh"], n),
-            "Time stepping/CFL number=%.12g" % cfl])
-        e = sc["error"](s, ctx.rundir(d)) if code == 0 else float("nan")
-        r = dict(scene=name, degree=p, cells=n, cfl=cfl, exit=code, error=e,
+        run = ctx.run(os.path.join(name, "wp-p%d-n%d" % (p, n)), sc["prm"], sc["extra"] + [
+            "Discretization/degree=%d" % p, "%s=%d" % (sc["mesh"], n), "Time stepping/CFL number=%.12g" % cfl])
+        s = run.summary
+        e = sc["error"](s, run.directory) if run.code == 0 else float("nan")
+        r = dict(scene=name, degree=p, cells=n, cfl=cfl, exit=run.code, error=e,
                  n_dofs=s.get("n_dofs", ""), steps=s.get("n_time_steps", ""),
-                 time_loop_cpu_s=cpu_loop(s), run_wall_s=s["_run_wall_s"], load=s["_load"])
+                 time_loop_cpu_s=cpu_loop(s), run_wall_s=run.wall_s, load=s["_load"])
         print("%s P%d n=%d: exit %d error %.3e cpu %.3g s" % (
-            name, p, n, code, e, r["time_loop_cpu_s"]), flush=True)
+            name, p, n, run.code, e, r["time_loop_cpu_s"]), flush=True)
         return r
 
     rows = ctx.pmap(one, [(p, n) for p in degrees for n in cells
@@ -393,7 +282,7 @@ def work_precision(ctx, name, sc):
         for r in [r for r in rows if r["degree"] == p]:
             r["blown_up"] = int(r["exit"] != 0 or not (r["error"] <= min(1., previous)))
             previous = r["error"] if math.isfinite(r["error"]) else previous
-    write_csv(os.path.join(ctx.out, name + "-work-precision.csv"), rows)
+    ctx.csv(name + "-work-precision", rows)
     fig, axes = plt.subplots(1, 2, figsize=(10, 4.2), sharey=True)
     for ax, key, label in ((axes[0], "time_loop_cpu_s", "CPU time of the time loop [s]"),
                            (axes[1], "run_wall_s", "wall time of the run [s]")):
@@ -404,22 +293,18 @@ def work_precision(ctx, name, sc):
                           ms=4, label="P%d" % p)
         for t in sc["targets"]:
             ax.axhline(t, color="gray", lw=0.6, ls=":")
-        ax.set_xlabel(label)
-        ax.grid(alpha=0.3, which="both")
-    axes[0].set_ylabel(sc["error_name"])
-    axes[0].legend(fontsize=8)
+        plot.label(ax, label)
+    plot.label(axes[0], y=sc["error_name"], legend=8, grid=0)
     fig.suptitle("%s: error against the exact solution vs cost (%s, SSP-RK3)" % (name, sc["prm"]),
                  fontsize=10)
-    save(fig, ctx.out, name + "-work-precision")
+    ctx.save(fig, name + "-work-precision")
     return rows
 
 
 def energy_grew(d):
     """Whether the discrete energy (timeseries.csv) grew from t = 0 to the end."""
-    with open(os.path.join(d, "timeseries.csv")) as f:
-        rows = list(csv.DictReader(l for l in f if not l.startswith("#")))
-    e_first, e_last = float(rows[0]["energy"]), float(rows[-1]["energy"])
-    return not (e_last <= e_first * (1 + 1e-10))
+    e = outputs.timeseries(d)["energy"]
+    return not (e[-1] <= e[0] * (1 + 1e-10))
 
 
 def classify(code, err, e, e0, grew=None, blowup=1.0):
@@ -463,14 +348,14 @@ def stability(ctx, name, sp):
 
         def one(cfl, e0):
             d = os.path.join(name, "st-c%d-p%d-cfl%s" % (sp["choices"].index(choices[ci]), p, tag(cfl)))
-            code, s, err = ctx.run(d, sp["prm"], extra + sets + [
+            run = ctx.run(d, sp["prm"], extra + sets + [
                 "Discretization/degree=%d" % p, "%s=%d" % (sp["mesh"], sp["cells"]),
                 "Time stepping/CFL number=%.12g" % cfl, "Time stepping/check stability limit=false"])
-            e = sp["error"](s, ctx.rundir(d)) if code == 0 else float("nan")
-            grew = energy_grew(ctx.rundir(d)) if code == 0 and sp.get("energy") else None
-            c = classify(code, err, e, e0, grew, sp["blowup"])
-            rows.append(dict(map=name, scene=sp["scene"], choice=label, degree=p, cfl=cfl, exit=code,
-                             error=e, state=c, time_loop_cpu_s=cpu_loop(s), message=err[:200]))
+            e = sp["error"](run.summary, run.directory) if run.code == 0 else float("nan")
+            grew = energy_grew(run.directory) if run.code == 0 and sp.get("energy") else None
+            c = classify(run.code, run.stderr, e, e0, grew, sp["blowup"])
+            rows.append(dict(map=name, scene=sp["scene"], choice=label, degree=p, cfl=cfl, exit=run.code,
+                             error=e, state=c, time_loop_cpu_s=cpu_loop(run.summary), message=run.stderr[:200]))
             print("%s [%s] P%d CFL %.4g: %s (error %.3e)" % (name, label, p, cfl, c, e), flush=True)
             return c, e
 
@@ -515,7 +400,7 @@ def stability(ctx, name, sp):
     results = ctx.pmap(pair, pairs)
     rows = [r for rr, _ in results for r in rr]
     limits = [l for _, l in results]
-    write_csv(os.path.join(ctx.out, name + "-stability.csv"), rows)
+    ctx.csv(name + "-stability", rows)
     stability_chart(ctx, name, sp, choices, degrees, rows, limits)
     return rows, limits
 
@@ -570,31 +455,26 @@ def stability_chart(ctx, name, sp, choices, degrees, rows, limits):
                ncol=len(handles), frameon=False)
     fig.suptitle("\n".join(textwrap.wrap("%s: SSP-RK3 stability, %s" % (name, sp["case"]), 120)),
                  fontsize=8.5, y=1 - 0.06 / height, va="top")
-    savefig(fig, ctx.out, name + "-stability")
+    ctx.save(fig, name + "-stability", tight=False)
 
 
-def limits_table(out, limits):
-    write_csv(os.path.join(out, "stability-limits.csv"), limits)
-    with open(os.path.join(out, "stability-limits.md"), "w") as f:
-        f.write("| map | choice | degree | limit (bisected) | x (2p+1) | / linear RK3-DG limit | above the limit |\n")
-        f.write("|---|---|---|---|---|---|---|\n")
-        for l in limits:
-            lim = "%.4g" % l["cfl_limit"] if l["cfl_limit"] != "" else "none stable"
-            f.write("| %s | %s | P%d | %s | %s | %s | %s |\n" % (
-                l["map"], l["choice"], l["degree"], lim,
-                "%.3g" % l["limit_times_2p_plus_1"] if l["limit_times_2p_plus_1"] != "" else "",
-                "%.3g" % l["limit_over_linear"] if l["limit_over_linear"] != "" else "",
-                l["state_above"]))
+def limits_table(ctx, limits):
+    ctx.csv("stability-limits", limits)
+    number = lambda fmt, x: fmt % x if x != "" else ""
+    with open(os.path.join(ctx.out, "stability-limits.md"), "w") as f:
+        f.write(outputs.markdown(
+            ["map", "choice", "degree", "limit (bisected)", "x (2p+1)", "/ linear RK3-DG limit", "above the limit"],
+            [[l["map"], l["choice"], "P%d" % l["degree"], number("%.4g", l["cfl_limit"]) or "none stable",
+              number("%.3g", l["limit_times_2p_plus_1"]), number("%.3g", l["limit_over_linear"]), l["state_above"]]
+             for l in limits]))
 
 
-def cheapest(out, all_rows):
+def cheapest(ctx, all_rows):
     res = []
     for name, sc in SCENES.items():
         # completed runs that did not blow up (error <= 1)
         rows = [r for r in all_rows if r["scene"] == name and not r["blown_up"]]
-        if not rows:
-            continue
-        for t in sc["targets"]:
+        for t in sc["targets"] if rows else []:
             ok = [r for r in rows if r["error"] <= t]
             if ok:
                 b = min(ok, key=lambda r: r["time_loop_cpu_s"])
@@ -604,22 +484,18 @@ def cheapest(out, all_rows):
                                 run_wall_s="%.3g" % b["run_wall_s"], load=b["load"]))
             else:
                 best = min(rows, key=lambda r: r["error"])
-                res.append(dict(scene=name, target_error=t, degree="not reached",
-                                cells="", cfl="", error="best %.3e (P%d, %d cells)" % (
-                                    best["error"], best["degree"], best["cells"]),
+                res.append(dict(scene=name, target_error=t, degree="not reached", cells="", cfl="",
+                                error="best %.3e (P%d, %d cells)" % (best["error"], best["degree"], best["cells"]),
                                 time_loop_cpu_s="", run_wall_s="", load=""))
-    write_csv(os.path.join(out, "cheapest.csv"), res)
-    with open(os.path.join(out, "cheapest.md"), "w") as f:
-        f.write("| scene | target error | degree | cells | CFL | error | CPU time loop [s] | wall run [s] | load |\n")
-        f.write("|---|---|---|---|---|---|---|---|---|\n")
-        for r in res:
-            f.write("| %s | %g | %s | %s | %s | %s | %s | %s | %s |\n" % (
-                r["scene"], r["target_error"], r["degree"], r["cells"], r["cfl"], r["error"],
-                r["time_loop_cpu_s"], r["run_wall_s"], r["load"]))
+    ctx.csv("cheapest", res)
+    with open(os.path.join(ctx.out, "cheapest.md"), "w") as f:
+        f.write(outputs.markdown(
+            ["scene", "target error", "degree", "cells", "CFL", "error", "CPU time loop [s]", "wall run [s]", "load"],
+            [[r["scene"], "%g" % r["target_error"]] + [r[k] for k in list(r)[2:]] for r in res]))
 
 
 def main():
-    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap = parser(__doc__)
     ap.add_argument("build")
     ap.add_argument("out")
     ap.add_argument("--quick", action="store_true", help="a few meshes, degrees and choices (a smoke run)")
@@ -647,13 +523,13 @@ def main():
     if not a.skip_work_precision:
         for name in only:
             all_rows += timed("work precision " + name, lambda: work_precision(ctx, name, SCENES[name]))
-        cheapest(ctx.out, all_rows)
+        cheapest(ctx, all_rows)
     if not a.skip_stability:
         for name, sp in STABILITY.items():
             if sp["scene"] in only:
                 limits += timed("stability " + name, lambda: stability(ctx, name, sp))[1]
         if limits:
-            limits_table(ctx.out, limits)
+            limits_table(ctx, limits)
     if not a.skip_failures:
         timed("failures", lambda: study_failures.run_all(ctx, only))
     c1 = os.times()
@@ -662,9 +538,10 @@ def main():
                 "at the end %s; granular_dg runs executed %d, reused %d\n" % (
                     "quick" if a.quick else "full", ",".join(only), a.jobs, time.time() - t0,
                     (c1.children_user - c0.children_user) + (c1.children_system - c0.children_system),
-                    l0, load(), COUNT["executed"], COUNT["reused"]))
+                    l0, load(), ctx.count["executed"], ctx.count["reused"]))
         f.write("parts (wall): %s\n" % "; ".join(parts))
-    print(open(os.path.join(a.out, "runtime.txt")).read())
+    with open(os.path.join(a.out, "runtime.txt")) as f:
+        print(f.read())
 
 
 if __name__ == "__main__":

@@ -1,45 +1,21 @@
 #!/usr/bin/python3
-"""Where the methods fail, reproduced and charted for
-contrib/study.py (which runs it: `contrib/study.py BUILD OUT`; this module
-has no command line of its own). Each mode writes OUT/failure-NAME.{png,svg,csv}
-and a few lines of numbers (read from the runs) into OUT/failures.md:
-
-  interfaces  the naive conservative-variable LLF flux at material
-              interfaces: L1 strain error and interface stress jump against
-              the resolution, naive (LLF on (eps, m)) against interface-aware
-              (impedance flux), with and without limiter; layered case (b)
-              of doc/layered.md shortened to [0, 60] and t = 50, reference P3
-              impedance at 32 cells per layer (8 with --quick);
-  friction    the explicit friction in the column (m = 1, (0, 10), t = 8,
-              tests/column/m1_stuck.prm): velocity sign flips (chatter) and the
-              strain drift of stuck material (probe z = 0.5, t = 4..8) against
-              the mesh (CFL 0.2) and against the time step (400 cells), for
-              explicit_sign, explicit_smooth (delta = 1e-2, 1e-3) and the
-              projection;
-  rk3         SSP-RK3 beyond its CFL limit per degree: the error of the
-              layered_1d stability runs against CFL / (linear limit), from
-              OUT/layered_1d-stability.csv (no runs of its own);
-  shock       the unlimited scheme at shocks: prm/elasticity_shock.prm, degrees
-              1-4, characteristic minmod (M = 0) against no limiter; the
-              strain's overshoot above and undershoot below the range
-              [0, eps_w] of the simple wave the wall drives (eps_w from the
-              wall's largest speed 0.4 and the stress law, computed here);
-  hopper      loss of hyperbolicity of steep-to-shallow transitions: 30 deg
-              cone to lower half-angles 31-35 deg (and 25 deg, steeper, the
-              wedge 30 -> 35 for contrast), P1, N = 100-800 (1600 for
-              31 deg), marched to tau = 0.3 (past the focus of the corner's shock on the axis at
-              tau ~ 0.14): completes or exit 3, tau and theta of the failure.
-"""
-import csv
-import glob
+"""Where the methods fail, reproduced and charted for contrib/study.py, which
+runs it (doc/study/README.md, "Where the methods fail"). Each mode writes
+OUT/failure-NAME.{png,svg,csv} and its numbers into OUT/failures.md:
+interfaces (the naive LLF flux at material interfaces against the impedance
+flux), friction (explicit friction in the column against the projection),
+rk3 (SSP-RK3 beyond its CFL limit, from OUT/layered_1d-stability.csv), shock
+(the unlimited scheme at shocks) and hopper (loss of hyperbolicity of
+steep-to-shallow transitions)."""
 import math
 import os
 
-import matplotlib
+import numpy as np
 
-matplotlib.use("Agg")
-import matplotlib.pyplot as plt  # noqa: E402
-import numpy as np  # noqa: E402
+from granular_dg import outputs, plot
+from granular_dg.run import tag
+
+plt = plot.pyplot()
 
 LAYERS = 60            # layers of width 1 on [0, 60]
 LAYERED_T = 50         # the front is at x ~ 45 then: the outflow end is not reached
@@ -59,36 +35,19 @@ def layered_reference_sets(ctx):
     --set that makes a run compute its errors against it."""
     per_layer = 8 if ctx.quick else 32
     d = "layered_reference/p3-n%d" % per_layer
-    code, s, err = ctx.run(d, "prm/layered_1d.prm", LAYERED_SHORT + [
+    run = ctx.run(d, "prm/layered_1d.prm", LAYERED_SHORT + [
         "Mesh/cells x=%d" % (LAYERS * per_layer), "Discretization/degree=3",
         "Discretization/numerical flux=impedance", "Limiter/scheme=none",
         "Time stepping/CFL number=0.1", "Output/write modes=true"])
-    if code != 0:
-        raise RuntimeError("the layered reference run failed: " + err)
-    modes = sorted(glob.glob(os.path.join(ctx.rundir(d), "modes-*.csv")))[-1]
-    return ["Exact solution/reference file=" + modes]
-
-
-def log_ticks(ax, values, axis="x"):
-    """A log axis with ticks at the values run, written as plain numbers."""
-    from matplotlib.ticker import FixedLocator, FormatStrFormatter, NullLocator
-    a = ax.xaxis if axis == "x" else ax.yaxis
-    (ax.set_xscale if axis == "x" else ax.set_yscale)("log")
-    a.set_major_locator(FixedLocator(sorted(set(values))))
-    a.set_major_formatter(FormatStrFormatter("%.3g"))
-    a.set_minor_locator(NullLocator())
+    if run.code != 0:
+        raise RuntimeError("the layered reference run failed: " + run.stderr)
+    return ["Exact solution/reference file=" + outputs.latest(run.directory, "modes")]
 
 
 def diagnostics(s, *keys):
     """The named entries of summary.json's diagnostics (NaN where missing)."""
     dg = s.get("diagnostics", {})
     return {k: dg.get(k, float("nan")) for k in keys}
-
-
-def read_table(path):
-    with open(path) as f:
-        lines = [l for l in f if not l.startswith("#")]
-    return list(csv.DictReader(lines))
 
 
 # ---------------------------------------------------------------- interfaces
@@ -107,21 +66,22 @@ def interfaces(ctx):
     def one(item):
         (label, flux, limiter), p, n = item
         d = "interfaces/%s-%s-p%d-n%d" % (flux, limiter, p, n)
-        code, s, err = ctx.run(d, "prm/layered_1d.prm", LAYERED_SHORT + ref + [
+        run = ctx.run(d, "prm/layered_1d.prm", LAYERED_SHORT + ref + [
             "Mesh/cells x=%d" % (LAYERS * n), "Discretization/degree=%d" % p,
             "Discretization/numerical flux=" + flux, "Limiter/scheme=" + limiter,
             "Time stepping/CFL number=%.12g" % (0.8 / (2 * p + 1))])
-        e = s.get("errors", {}).get("component_0_l1_l2_linf", [float("nan")])[0] if code == 0 \
+        s = run.summary
+        e = s.get("errors", {}).get("component_0_l1_l2_linf", [float("nan")])[0] if run.code == 0 \
             else float("nan")
         return dict(config=label, flux=flux, limiter=limiter, degree=p, cells_per_layer=n,
-                    exit=code, l1_strain_error=e,
+                    exit=run.code, l1_strain_error=e,
                     **diagnostics(s, "interface_stress_jump_max", "interface_stress_jump_mean",
                                   "min_strain", "max_strain"),
                     time_loop_cpu_s=s.get("time_loop_cpu_s", float("nan")),
-                    final_time=s.get("final_time", ""), message=err[:160])
+                    final_time=s.get("final_time", ""), message=run.stderr[:160])
 
     rows = ctx.pmap(one, items)
-    ctx.write_csv(os.path.join(ctx.out, "failure-interfaces.csv"), rows)
+    ctx.csv("failure-interfaces", rows)
     fig, ax = plt.subplots(1, 2, figsize=(11, 4.2))
     colors = {c[0]: k for c, k in zip(INTERFACE_CONFIGS, ["tab:red", "tab:orange", "tab:blue", "tab:green"])}
     marks = {1: "o", 2: "s", 3: "^"}
@@ -143,13 +103,12 @@ def interfaces(ctx):
     ax[0].set_ylabel("L1 error of the strain at t = %g" % LAYERED_T)
     ax[1].set_ylabel("largest stress jump across an interface at t = %g" % LAYERED_T)
     for a in ax:
-        a.set_xlabel("cells per layer")
-        log_ticks(a, per_layer)
-        a.grid(alpha=0.3, which="both")
+        plot.label(a, "cells per layer")
+        plot.log_ticks(a, per_layer)
     ax[0].legend(fontsize=6, ncol=2)
     fig.suptitle("Naive LLF on (eps, m) against the interface-aware impedance flux at material "
                  "interfaces (layered strip, [0, %d], t = %g)" % (LAYERS, LAYERED_T), fontsize=9)
-    ctx.save(fig, ctx.out, "failure-interfaces")
+    ctx.save(fig, "failure-interfaces")
 
     notes = ["**interfaces** (layered strip [0, %d] to t = %g, L1 strain error against P3 "
              "impedance at %d cells per layer; CFL 0.8/(2p+1)):" % (
@@ -188,17 +147,16 @@ def friction(ctx):
     def one(item):
         v, n, cfl = item
         label, sets = variants[v]
-        d = "friction/v%d-n%d-cfl%s" % (v, n, ctx.tag(cfl))
-        code, s, err = ctx.run(d, "tests/column/m1_stuck.prm", sets + [
+        run = ctx.run("friction/v%d-n%d-cfl%s" % (v, n, tag(cfl)), "tests/column/m1_stuck.prm", sets + [
             "Mesh/cells=%d" % n, "Time stepping/CFL number=%.12g" % cfl])
-        steps = s.get("n_time_steps", 0)
-        return dict(friction=label, cells=n, cfl=cfl, exit=code,
+        s, steps = run.summary, run.summary.get("n_time_steps", 0)
+        return dict(friction=label, cells=n, cfl=cfl, exit=run.code,
                     dt=s.get("final_time", 8.) / steps if steps else float("nan"),
                     **diagnostics(s, "velocity_sign_flips", "probe_strain_drift", "max_velocity"),
-                    time_loop_cpu_s=s.get("time_loop_cpu_s", float("nan")), message=err[:160])
+                    time_loop_cpu_s=s.get("time_loop_cpu_s", float("nan")), message=run.stderr[:160])
 
     rows = ctx.pmap(one, items)
-    ctx.write_csv(os.path.join(ctx.out, "failure-friction.csv"), rows)
+    ctx.csv("failure-friction", rows)
     fig, ax = plt.subplots(2, 2, figsize=(11, 7))
     styles = ["o-", "s--", "^:", "v-."]
     floor = {"velocity_sign_flips": 0.5, "probe_strain_drift": 1e-17}
@@ -214,14 +172,13 @@ def friction(ctx):
         ax[row, 0].set_ylabel("velocity sign flips")
         ax[row, 1].set_ylabel("|strain drift| of the probe, t = 4..8")
         for col in range(2):
-            ax[row, col].set_xlabel(xl)
-            log_ticks(ax[row, col], [r[key] for r in rows if r["exit"] == 0 and math.isfinite(r[key])])
-            ax[row, col].grid(alpha=0.3, which="both")
+            plot.label(ax[row, col], xl)
+            plot.log_ticks(ax[row, col], [r[key] for r in rows if r["exit"] == 0 and math.isfinite(r[key])])
     ax[0, 0].legend(fontsize=7)
     fig.suptitle("Coulomb friction in the column (m = 1, t = 8): chatter (velocity sign flips) and creep "
                  "of stuck material (strain drift)\nof the explicit treatments against the projection "
                  "(an exact 0 is drawn at 0.5 flips and 1e-17 drift)", fontsize=9)
-    ctx.save(fig, ctx.out, "failure-friction")
+    ctx.save(fig, "failure-friction")
     notes = ["**friction** (column m = 1 on (0, 10), P2, characteristic limiter, t = 8; the probe "
              "z = 0.5 is at rest from t = 3.3 in the exact solution):"]
     for label, _ in variants:
@@ -244,14 +201,14 @@ def rk3(ctx):
     path = os.path.join(ctx.out, "layered_1d-stability.csv")
     if not os.path.exists(path):
         return ["**rk3**: no layered_1d-stability.csv (stability maps skipped)"]
-    rows = [r for r in read_table(path)]
+    rows = outputs.read_table(path, numbers=False).rows()
     degrees = sorted({int(r["degree"]) for r in rows})
     fig, ax = plt.subplots(figsize=(7, 4.2))
     out = []
     for p in degrees:
         sel = sorted([r for r in rows if int(r["degree"]) == p], key=lambda r: float(r["cfl"]))
         x = [float(r["cfl"]) / ctx.linear_rk3[p] for r in sel]
-        y = [float(r["error"]) if r["error"] not in ("", "nan") else float("nan") for r in sel]
+        y = [float(r["error"]) for r in sel]
         line, = ax.loglog(x, y, "-", lw=0.8, label="P%d" % p)
         for xi, yi, r in zip(x, y, sel):
             ax.scatter([xi], [yi], marker={"stable": "o", "oscillatory": "s", "blown up": "x",
@@ -261,13 +218,13 @@ def rk3(ctx):
     ax.axvline(1, color="k", lw=0.8, ls=":")
     ax.set_xlabel("CFL / linear SSP-RK3 DG limit of the degree (1.256, 0.410, 0.210, 0.130, 0.0897)")
     ax.set_ylabel("L1 error at t = 1 (smooth wave, 32 cells)")
-    log_ticks(ax, [0.25, 0.5, 0.75, 1, 1.25, 1.5, 2])
+    plot.log_ticks(ax, [0.25, 0.5, 0.75, 1, 1.25, 1.5, 2])
     ax.set_title("SSP-RK3 DG beyond its linear CFL limit (smooth wave, LLF, no limiter)\n"
                  "(o stable, s energy grew, x blown up)", fontsize=9)
     ax.grid(alpha=0.3, which="both")
     ax.legend(fontsize=7)
-    ctx.save(fig, ctx.out, "failure-rk3")
-    ctx.write_csv(os.path.join(ctx.out, "failure-rk3.csv"), out)
+    ctx.save(fig, "failure-rk3")
+    ctx.csv("failure-rk3", out)
     notes = ["**rk3** (smooth wave, 32 cells, t = 1, LLF, no limiter; from layered_1d-stability.csv):"]
     for p in degrees:
         sel = sorted([r for r in out if r["degree"] == p], key=lambda r: r["cfl_over_linear_limit"])
@@ -307,15 +264,14 @@ def shock(ctx):
         p, (label, lim) = item
         cfl = 0.07 if p == 4 else 0.75 / (2 * p + 1)
         d = "shock/%s-p%d" % (lim, p)
-        code, s, err = ctx.run(d, "prm/elasticity_shock.prm", base + [
+        run = ctx.run(d, "prm/elasticity_shock.prm", base + [
             "Discretization/degree=%d" % p, "Limiter/scheme=" + lim,
             "Time stepping/CFL number=%.12g" % cfl])
-        r = dict(limiter=label, degree=p, cfl=cfl, exit=code, message=err[:160],
-                 time_loop_cpu_s=s.get("time_loop_cpu_s", float("nan")))
-        if code == 0:
-            prof = sorted(glob.glob(os.path.join(ctx.rundir(d), "profile-*.csv")))[-1]
-            t = read_table(prof)
-            strain = np.array([float(x["strain"]) for x in t])
+        r = dict(limiter=label, degree=p, cfl=cfl, exit=run.code, message=run.stderr[:160],
+                 time_loop_cpu_s=run.summary.get("time_loop_cpu_s", float("nan")))
+        if run.code == 0:
+            prof = outputs.latest(run.directory, "profile")
+            strain = outputs.read_table(prof)["strain"]
             r.update(final_max_strain=strain.max(), final_min_strain=strain.min(),
                      overshoot_pct=100 * max(0., strain.max() - eps_w) / eps_w,
                      undershoot_pct=100 * max(0., -strain.min()) / eps_w,
@@ -323,8 +279,7 @@ def shock(ctx):
         return r
 
     rows = ctx.pmap(one, items)
-    ctx.write_csv(os.path.join(ctx.out, "failure-shock.csv"),
-                  [{k: v for k, v in r.items() if k != "profile"} for r in rows])
+    ctx.csv("failure-shock", [{k: v for k, v in r.items() if k != "profile"} for r in rows])
     fig, ax = plt.subplots(1, 2, figsize=(11, 4.2))
     for (label, lim), c in zip(limiters, ("tab:blue", "tab:red")):
         sel = [r for r in rows if r["limiter"] == label and r["exit"] == 0]
@@ -342,29 +297,25 @@ def shock(ctx):
     # the profiles at the shock
     lim_rows = [r for r in rows if r["exit"] == 0 and r["limiter"] == limiters[0][0]]
     if lim_rows:
-        t = read_table(lim_rows[-1]["profile"])
-        x = np.array([float(v["x"]) for v in t])
-        e = np.array([float(v["strain"]) for v in t])
+        t = outputs.read_table(lim_rows[-1]["profile"])
+        x, e = t["x"], t["strain"]
         xs = x[np.argmin(np.diff(e)) if len(e) > 1 else 0]  # steepest drop: the shock
         for r in rows:
             if r["exit"] != 0:
                 continue
-            t = read_table(r["profile"])
-            x = np.array([float(v["x"]) for v in t])
-            e = np.array([float(v["strain"]) for v in t])
+            t = outputs.read_table(r["profile"])
+            x, e = t["x"], t["strain"]
             w = (x > xs - 10) & (x < xs + 5)
             ax[1].plot(x[w], e[w], "-" if r["limiter"] == limiters[1][0] else ":", lw=1,
                        label="P%d, %s" % (r["degree"], "no limiter" if r["limiter"] == limiters[1][0]
                                            else "limited"))
         ax[1].axhline(eps_w, color="gray", lw=0.6, ls="--")
         ax[1].axhline(0, color="gray", lw=0.6, ls="--")
-        ax[1].set_xlabel("x")
-        ax[1].set_ylabel("strain at t = %g" % t_end)
+        plot.label(ax[1], "x", "strain at t = %g" % t_end)
         ax[1].legend(fontsize=6, ncol=2)
-        ax[1].grid(alpha=0.3)
     fig.suptitle("The unlimited scheme at a shock (prm/elasticity_shock.prm, dx = 0.25): over- and "
                  "undershoots; the characteristic minmod limiter removes them", fontsize=9)
-    ctx.save(fig, ctx.out, "failure-shock")
+    ctx.save(fig, "failure-shock")
     notes = ["**shock** (prm/elasticity_shock.prm, 1200 cells, t = %g; simple-wave range [0, eps_w], "
              "eps_w = %.4f; strain at p + 1 equidistant points per cell):" % (t_end, eps_w)]
     for r in rows:
@@ -392,18 +343,18 @@ def hopper(ctx):
     def one(item):
         g, a, n = item
         d = "hopper/%s-30-%g-n%d" % (g, a, n)
-        code, s, err = ctx.run(d, "prm/hopper_cone_30_25.prm", [
+        run = ctx.run(d, "prm/hopper_cone_30_25.prm", [
             "Hopper/geometry=" + g, "Hopper/lower half-angle=%g" % a, "Hopper/cells=%d" % n,
             "Time stepping/final time=%g" % HOPPER_TAU, "Hopper output/step series interval=0"])
-        r = dict(geometry=g, upper=30, lower=a, cells=n, exit=code,
-                 outcome="completes" if code == 0 else ("hyperbolicity lost" if code == 3 else "exit %d" % code),
-                 tau_reached=s.get("final_time", float("nan")),
-                 **diagnostics(s, "min_hyperbolicity_margin", "tau_of_min_margin", "theta_of_min_margin_deg"),
-                 time_loop_cpu_s=s.get("time_loop_cpu_s", float("nan")), message=err[:200])
-        return r
+        code, s = run.code, run.summary
+        return dict(geometry=g, upper=30, lower=a, cells=n, exit=code,
+                    outcome="completes" if code == 0 else ("hyperbolicity lost" if code == 3 else "exit %d" % code),
+                    tau_reached=s.get("final_time", float("nan")),
+                    **diagnostics(s, "min_hyperbolicity_margin", "tau_of_min_margin", "theta_of_min_margin_deg"),
+                    time_loop_cpu_s=s.get("time_loop_cpu_s", float("nan")), message=run.stderr[:200])
 
     rows = ctx.pmap(one, items)
-    ctx.write_csv(os.path.join(ctx.out, "failure-hopper.csv"), rows)
+    ctx.csv("failure-hopper", rows)
     fig, ax = plt.subplots(1, 2, figsize=(11, 4.2))
     labels = ["%s 30 -> %g" % c for c in cases]
     for i, (g, a) in enumerate(cases):
@@ -413,29 +364,27 @@ def hopper(ctx):
                           color="tab:green" if ok else "tab:red")
             ax[0].annotate(("m %.2g" % r["min_hyperbolicity_margin"]) if ok else ("tau %.4g" % r["tau_reached"]),
                            (r["cells"], i), xytext=(4, 5), textcoords="offset points", fontsize=6.5)
-        fail = sorted([r for r in rows if r["geometry"] == g and r["lower"] == a and r["exit"] == 2],
+        fail = sorted([r for r in rows if r["geometry"] == g and r["lower"] == a and r["exit"] == 3],
                       key=lambda r: r["cells"])
         if fail:
             ax[1].semilogx([r["cells"] for r in fail], [r["tau_reached"] for r in fail], "x-",
                            label=labels[i])
-    log_ticks(ax[0], [r["cells"] for r in rows])
+    plot.log_ticks(ax[0], [r["cells"] for r in rows])
     ax[0].set_yticks(range(len(cases)))
     ax[0].set_yticklabels(labels, fontsize=7)
     ax[0].set_ylim(-0.5, len(cases) - 0.3)
     ax[0].set_xlabel("cells N (P1)")
     ax[0].set_title("o completes to tau = %g (m: min hyperbolicity margin), x loses "
                     "hyperbolicity (tau)" % HOPPER_TAU, fontsize=8)
-    ax[1].set_xlabel("cells N (P1)")
-    log_ticks(ax[1], [r["cells"] for r in rows])
-    ax[1].set_ylabel("tau at which hyperbolicity is lost")
-    ax[1].grid(alpha=0.3, which="both")
+    plot.label(ax[1], "cells N (P1)", "tau at which hyperbolicity is lost")
+    plot.log_ticks(ax[1], [r["cells"] for r in rows])
     if ax[1].get_legend_handles_labels()[0]:
         ax[1].legend(fontsize=7)
     for a in ax:
         a.grid(alpha=0.3, which="both")
     fig.suptitle("Hopper: steep-to-shallow transitions (30 deg -> shallower lower hopper) lose "
                  "hyperbolicity where the corner shock focuses on the axis", fontsize=9)
-    ctx.save(fig, ctx.out, "failure-hopper")
+    ctx.save(fig, "failure-hopper")
     notes = ["**hopper** (P1, CFL 1/3, characteristic limiter, marched to tau = %g):" % HOPPER_TAU]
     for g, a in cases:
         sel = [r for r in rows if r["geometry"] == g and r["lower"] == a]

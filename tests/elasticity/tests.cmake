@@ -2,10 +2,11 @@
 # EOC of degrees 0-4 on the periodic linear wave against the exact solution:
 # the .output holds the theoretical rate p + 1 of the L2 and of the L1 error;
 # |EOC - (p + 1)| <= 0.2, so
-# every degree converges at >= p + 0.8.
+# every degree converges at >= p + 0.8. (Its convergence.csv is read by
+# python/readers_convergence.)
 granular_dg_test(elasticity/linear_wave_eoc PRM ../prm/elasticity_linear_wave.prm
   ARGS --set Convergence/enabled=true
-  COMPARE convergence-rates.csv NUMDIFF -a 0.2 -r 0)
+  COMPARE convergence-rates.csv NUMDIFF -a 0.2 -r 0 FIXTURES_SETUP elasticity_eoc_output)
 
 # The shock case of the prm/ file as it ships: the strain integral equals the
 # wall displacement int_0^60 0.2 (1 + cos(pi (t - 30)/30)) dt = 12 exactly

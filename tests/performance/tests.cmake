@@ -7,9 +7,10 @@
 set(perf_check ${CMAKE_CURRENT_SOURCE_DIR}/performance/check_benchmark.py)
 set(perf_steps --set Benchmark/steps=3 --set Benchmark/repetitions=2 --set "Benchmark/warm-up steps=1"
   --exe=$<TARGET_FILE:granular_dg>)
-# 1D line engine, with the limiter
+# 1D line engine, with the limiter (its benchmark.json is read by python/readers_benchmark)
 granular_dg_test(performance/benchmark_layered_1d PRM ../prm/layered_1d.prm EXE ${perf_check}
-  ARGS --set "Mesh/x max=20" --set "Mesh/cells x=40" ${perf_steps} COMPARE stdout LABELS performance)
+  ARGS --set "Mesh/x max=20" --set "Mesh/cells x=40" ${perf_steps} COMPARE stdout LABELS performance
+  FIXTURES_SETUP benchmark_layered_1d_output)
 # 2D MatrixFree engine
 granular_dg_test(performance/benchmark_layered_2d PRM ../prm/layered_2d.prm EXE ${perf_check}
   ARGS --set "Mesh/cells x=20" --set "Mesh/cells y=4" --set "Mesh/x max=20" ${perf_steps}

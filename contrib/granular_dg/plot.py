@@ -1,0 +1,65 @@
+"""The matplotlib set-up of the figure scripts. matplotlib is imported when a
+figure is made, so the readers work without it (Debian's python3-matplotlib:
+run the scripts with /usr/bin/python3)."""
+import os
+
+
+def pyplot():
+    """matplotlib.pyplot on the Agg backend; SVG files without a date and
+    with fixed element ids, so charts of the same runs are byte-identical."""
+    try:
+        import matplotlib
+    except ImportError:
+        raise SystemExit("matplotlib is missing: run with /usr/bin/python3 (Debian's "
+                         "python3-matplotlib, bash contrib/install-deps.sh --tests)") from None
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    plt.rcParams["svg.hashsalt"] = "granular_dg study"
+    return plt
+
+
+def subplots(*args, **kwargs):
+    return pyplot().subplots(*args, **kwargs)
+
+
+def save(fig, path, *formats, dpi=110, tight=True, say=False, **kwargs):
+    """Writes the figure to PATH and beside it in the other formats ("svg"),
+    then closes it."""
+    if tight:
+        fig.tight_layout()
+    base, ext = os.path.splitext(path)
+    for p in [path] + [base + "." + f for f in formats]:
+        fig.savefig(p, dpi=dpi, metadata={"Date": None} if p.endswith(".svg") else None, **kwargs)
+        if say:
+            print("wrote " + p)
+    pyplot().close(fig)
+
+
+def label(ax, x=None, y=None, title=None, legend=None, size=None, grid=0.3, which="both"):
+    """Axis labels, title (font size), grid (its alpha, which ticks) and legend (its font size)."""
+    if x:
+        ax.set_xlabel(x)
+    if y:
+        ax.set_ylabel(y)
+    if title:
+        ax.set_title(title, **({"fontsize": size} if size else {}))
+    if grid:
+        ax.grid(alpha=grid, which=which)
+    if legend:
+        ax.legend(fontsize=legend)
+
+
+def log_ticks(ax, values, axis="x"):
+    """A log axis with ticks at the values run, written as plain numbers."""
+    from matplotlib.ticker import FixedLocator, FormatStrFormatter, NullLocator
+    a = ax.xaxis if axis == "x" else ax.yaxis
+    (ax.set_xscale if axis == "x" else ax.set_yscale)("log")
+    a.set_major_locator(FixedLocator(sorted(set(values))))
+    a.set_major_formatter(FormatStrFormatter("%.3g"))
+    a.set_minor_locator(NullLocator())
+
+
+def split_run(text):
+    """'DIR:label' -> (DIR, label); the label defaults to DIR's last part."""
+    d, _, name = text.partition(":")
+    return d, name or os.path.basename(os.path.normpath(d))

@@ -1,0 +1,125 @@
+"""Running granular_dg on a case file with --set overrides into an output
+directory, and reusing a run that is there already."""
+import collections
+import concurrent.futures
+import json
+import os
+import subprocess
+import sys
+import tempfile
+import time
+
+ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+# no snapshots: no output times (but the final one), no VTU
+NO_SNAPSHOTS = ("Output/output times=", "Output/write vtu=false")
+ENV = dict(OMPI_ALLOW_RUN_AS_ROOT="1", OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1",
+           OMPI_MCA_rmaps_base_oversubscribe="1", OMPI_MCA_ess_singleton_isolated="1")
+
+Run = collections.namedtuple("Run", "code summary stderr directory wall_s cpu_s")
+
+
+def program(build):
+    """The granular_dg of a build directory."""
+    return os.path.join(os.path.abspath(build), "granular_dg")
+
+
+def load(fields=1):
+    """The load average (1, 5, 15 min: the first `fields`) as text."""
+    with open("/proc/loadavg") as f:
+        return " ".join(f.read().split()[:fields])
+
+
+def command(build, prm, directory, sets=(), ranks=1, benchmark=False):
+    """The command line of a run: PRM (relative to the repository unless
+    absolute) into DIRECTORY, overwriting, no progress lines, then SETS."""
+    cmd = [program(build)] + (["--benchmark"] if benchmark else []) + [os.path.join(ROOT, prm)]
+    for s in ("Output/directory=" + os.path.abspath(directory), "Output/overwrite=true",
+              "Output/progress interval=0") + tuple(sets):
+        cmd += ["--set", s]
+    return (["mpirun", "-np", str(ranks)] if ranks > 1 else []) + cmd
+
+
+def finished(directory):
+    """The Run recorded in a directory by run_case, or a completed run of
+    the program's own; None otherwise."""
+    s = _summary(directory)
+    if not s:
+        return None
+    try:
+        with open(os.path.join(directory, "exit.txt")) as f:
+            code, err = f.read().split("\n", 1)
+    except OSError:
+        if s.get("status") != "completed":
+            return None
+        code, err = 0, ""
+    nan = float("nan")
+    return Run(int(code), s, err, directory, s.get("_run_wall_s", nan), s.get("_run_cpu_s", nan))
+
+
+def run_case(build, prm, directory, sets=(), ranks=1, benchmark=False, reuse=False, check=False,
+             log=False, keep=True):
+    """Runs granular_dg (see command()); reuse: a finished run in DIRECTORY
+    is taken as it is; check: exits with the run's error unless it exits 0;
+    log: stdout and stderr go to DIRECTORY.log too; keep: records the exit
+    code and the stderr in DIRECTORY/exit.txt, the wall and CPU time and the
+    load at the start in summary.json (_run_wall_s, _run_cpu_s, _load)."""
+    done = finished(directory) if reuse else None
+    if done is None:
+        os.makedirs(directory, exist_ok=True)
+        l0, t0 = load(), time.time()
+        code, err, cpu = execute(command(build, prm, directory, sets, ranks, benchmark),
+                                 directory.rstrip("/") + ".log" if log else None)
+        done = Run(code, _summary(directory), err, directory, time.time() - t0, cpu)
+        if keep:
+            done = record(done, l0)
+    if check and done.code != 0:
+        sys.exit("granular_dg %s into %s: exit %d: %s" % (prm, directory, done.code, done.stderr))
+    return done
+
+
+def execute(cmd, log=None):
+    """(exit code, stderr as one line, CPU time) of a process; its stdout
+    and stderr go to the file log if given."""
+    with tempfile.TemporaryFile("w+") as out, tempfile.TemporaryFile("w+") as err:
+        p = subprocess.Popen(cmd, stdout=out, stderr=err, text=True, env=dict(os.environ, **ENV))
+        _, status, usage = os.wait4(p.pid, 0)  # this process's CPU time, also when runs go in threads
+        p.returncode = os.waitstatus_to_exitcode(status)
+        out.seek(0), err.seek(0)
+        stdout, stderr = out.read(), err.read()
+    if log:
+        with open(log, "w") as f:
+            f.write(stdout + stderr)
+    return p.returncode, stderr.strip().replace("\n", " "), usage.ru_utime + usage.ru_stime
+
+
+def _summary(directory):
+    """summary.json of a run as a dict, {} when there is none (bad input)."""
+    try:
+        with open(os.path.join(directory, "summary.json")) as f:
+            return json.load(f)
+    except (OSError, ValueError):
+        return {}
+
+
+def record(run, load_before):
+    """Keeps the exit code, stderr, times and load of a run in its directory."""
+    s = dict(run.summary, _run_wall_s=run.wall_s, _run_cpu_s=run.cpu_s, _load=load_before)
+    with open(os.path.join(run.directory, "summary.json"), "w") as f:
+        json.dump(s, f)
+    with open(os.path.join(run.directory, "exit.txt"), "w") as f:
+        f.write("%d\n%s" % (run.code, run.stderr))
+    return run._replace(summary=s)
+
+
+def pmap(f, items, jobs=2):
+    """f over items, `jobs` at a time (threads), the results in order."""
+    items = list(items)
+    if jobs <= 1 or len(items) <= 1:
+        return [f(i) for i in items]
+    with concurrent.futures.ThreadPoolExecutor(jobs) as ex:
+        return list(ex.map(f, items))
+
+
+def tag(value):
+    """A number as part of a file name: 0.25 -> 0_25."""
+    return ("%.6g" % value).replace(".", "_")
