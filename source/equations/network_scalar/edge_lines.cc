@@ -27,6 +27,38 @@ namespace granular_dg::network
         s += u[k] * B[k];
       return s;
     }
+
+    /// the modes of W consecutive cells (lane l: cell l), nm per cell
+    template <unsigned int nm>
+    DEAL_II_ALWAYS_INLINE inline void
+    load_cells(const double *first, VA (&x)[nm])
+    {
+      if constexpr (nm == 1)
+        x[0].load(first);
+      else
+        {
+          unsigned int offsets[W];
+          for (unsigned int l = 0; l < W; ++l)
+            offsets[l] = l * nm;
+          vectorized_load_and_transpose(nm, first, offsets, x);
+        }
+    }
+
+    /// store_cells(): the inverse of load_cells()
+    template <unsigned int nm>
+    DEAL_II_ALWAYS_INLINE inline void
+    store_cells(const VA (&x)[nm], double *first)
+    {
+      if constexpr (nm == 1)
+        x[0].store(first);
+      else
+        {
+          unsigned int offsets[W];
+          for (unsigned int l = 0; l < W; ++l)
+            offsets[l] = l * nm;
+          vectorized_transpose_and_store(false, nm, x, offsets, first);
+        }
+    }
   } // namespace
 
   /// An edge's flux law and numerical flux, copied into the kernels (a
@@ -192,7 +224,8 @@ namespace granular_dg::network
       {
         const double *u       = src + index(e, c);
         double        res[nm] = {};
-        for (unsigned int q = 0; q < nq; ++q)
+        // (degree 0: L_0' = 0, the volume term is 0)
+        for (unsigned int q = 0; nm > 1 && q < nq; ++q)
           {
             const auto  &D  = derivative[q];
             const double wf = weights[q] * law.f.value(point_state<nm>(u, basis[q]));
@@ -238,16 +271,13 @@ namespace granular_dg::network
                         const Law law, double &F_left, const Out &out) const
   {
     constexpr unsigned int nq = nm + 1;
-    unsigned int           offsets[W];
-    for (unsigned int l = 0; l < W; ++l)
-      offsets[l] = l * nm;
-    VA u[nm], v[nm];
-    vectorized_load_and_transpose(nm, src + index(e, c), offsets, u);
-    vectorized_load_and_transpose(nm, src + index(e, c + 1), offsets, v);
+    VA                     u[nm], v[nm];
+    load_cells<nm>(src + index(e, c), u);
+    load_cells<nm>(src + index(e, c + 1), v);
     const VA h_c = h[e];
 
     VA res[nm] = {};
-    for (unsigned int q = 0; q < nq; ++q)
+    for (unsigned int q = 0; nm > 1 && q < nq; ++q)
       {
         const auto &D  = derivative[q];
         const VA    wf = weights[q] * law.f.value(point_state<nm>(u, basis[q]));
@@ -275,7 +305,7 @@ namespace granular_dg::network
     for (unsigned int k = 0; k < nm; ++k)
       rate[k] = (res[k] - F_right * at_1[k] + F_left_va * at_0[k]) * inv_h;
     double rates[W * nm];
-    vectorized_transpose_and_store(false, nm, rate, offsets, rates);
+    store_cells<nm>(rate, rates);
     for (unsigned int j = 0; j < W * nm; ++j)
       out(index(e, c) + j, rates[j]);
   }
@@ -370,26 +400,26 @@ namespace granular_dg::network
     const FluxFunction f = laws[e];
     const auto         cell_value = [&](const auto *u, const auto &h_c) {
       using Number    = std::remove_cv_t<std::remove_reference_t<decltype(h_c)>>;
+      // (degree 0: every point has the cell's value)
       Number cell_max = 0.;
-      for (unsigned int q = 0; q < nm + 1; ++q)
+      for (unsigned int q = 0; q < (nm > 1 ? nm + 1 : 1); ++q)
         cell_max = std::max(cell_max, std::max(std::abs(f.derivative(
                                                  point_state<nm>(u, basis[q]))),
                                                Number(0.)));
       return cell_max / h_c;
     };
-    unsigned int offsets[W];
-    for (unsigned int l = 0; l < W; ++l)
-      offsets[l] = l * nm;
-    double       result = 0;
+    // (the largest over the lanes once per edge: max is exact in any order)
+    VA           lanes  = 0.;
     unsigned int c      = 0;
     for (; W > 1 && c + W <= cells[e]; c += W)
       {
         VA u[nm];
-        vectorized_load_and_transpose(nm, src + index(e, c), offsets, u);
-        const VA speed = cell_value(u, VA(h[e]));
-        for (unsigned int l = 0; l < W; ++l)
-          result = std::max(result, speed[l]);
+        load_cells<nm>(src + index(e, c), u);
+        lanes = std::max(lanes, cell_value(u, VA(h[e])));
       }
+    double result = 0;
+    for (unsigned int l = 0; l < W; ++l)
+      result = std::max(result, lanes[l]);
     for (; c < cells[e]; ++c)
       result = std::max(result, cell_value(src + index(e, c), h[e]));
     return result;
@@ -451,29 +481,22 @@ namespace granular_dg::network
     unsigned int troubled = 0, c = 0;
     if (W > 1 && nm > 1 && method.indicator == TroubleIndicator::everywhere)
       for (; c + W <= n; c += W)
-        {
-          // the TVB test of W cells at once (dg::internal::tvb_keeps_lanes()
-          // decides as tvb_keeps() does); limit_cell() limits those it fails
-          const unsigned int done = tvb_failures<nm>(u, e, c);
-          for (unsigned int l = 0; l < W; ++l)
-            if (done & (1u << l))
-              troubled += limit_cell<nm>(u, e, c + l, floor);
-        }
+        troubled += limit_batch<nm>(u, e, c);
     for (; c < n; ++c)
       troubled += limit_cell<nm>(u, e, c, floor);
     return troubled;
   }
 
-  /// The lanes (bit l: cell c + l of edge e) whose TVB test fails.
+  /// limit_cell() on the cells c .. c + W - 1 of edge e as one SIMD batch
+  /// (every cell examined): the TVB test by dg::internal::tvb_keeps_lanes(),
+  /// which decides as tvb_keeps() does, and the TVB minmod slope lane by
+  /// lane; the troubled cells.
   template <unsigned int nm>
   unsigned int
-  EdgeLines::tvb_failures(const double *u, const unsigned int e, const unsigned int c) const
+  EdgeLines::limit_batch(double *u, const unsigned int e, const unsigned int c) const
   {
-    unsigned int offsets[W];
-    for (unsigned int l = 0; l < W; ++l)
-      offsets[l] = l * nm;
     VA x[nm];
-    vectorized_load_and_transpose(nm, u + index(e, c), offsets, x);
+    load_cells<nm>(u + index(e, c), x);
     // the neighbours' means, the outer states beyond the edge's ends
     VA avg_m, avg_p;
     for (unsigned int l = 0; l < W; ++l)
@@ -497,11 +520,36 @@ namespace granular_dg::network
     const VA Mh2   = method.tvb_M * h[e] * h[e];
     const VA keeps = dg::internal::tvb_keeps_lanes(jump_p, dp, dm, Mh2) *
                      dg::internal::tvb_keeps_lanes(jump_m, dp, dm, Mh2);
-    unsigned int fails = 0;
+    unsigned int troubled = 0;
     for (unsigned int l = 0; l < W; ++l)
-      if (keeps[l] == 0.)
-        fails |= 1u << l;
-    return fails;
+      troubled += keeps[l] == 0.;
+    if (troubled == 0)
+      return 0;
+    // minmod_tvb(slope, dp, dm, Mh2): the slope where |slope| <= M h^2, else
+    // the smallest of the three when they share a sign, else 0
+    using S          = SIMDComparison;
+    const VA zero    = 0., slope = x[1] * at_1[1];
+    const VA all_pos = compare_and_apply_mask<S::greater_than>(
+      slope, zero,
+      compare_and_apply_mask<S::greater_than>(
+        dp, zero, compare_and_apply_mask<S::greater_than>(dm, zero, VA(1.), zero), zero),
+      zero);
+    const VA all_neg = compare_and_apply_mask<S::less_than>(
+      slope, zero,
+      compare_and_apply_mask<S::less_than>(
+        dp, zero, compare_and_apply_mask<S::less_than>(dm, zero, VA(1.), zero), zero),
+      zero);
+    VA s = compare_and_apply_mask<S::equal>(all_pos, VA(1.), std::min(slope, std::min(dp, dm)),
+                                            zero);
+    s    = compare_and_apply_mask<S::equal>(all_neg, VA(1.), std::max(slope, std::max(dp, dm)), s);
+    s    = compare_and_apply_mask<S::less_than_or_equal>(std::abs(slope), Mh2, slope, s);
+    // troubled lanes: the limited slope, no higher modes
+    const VA limited = s / at_1[1];
+    x[1]             = compare_and_apply_mask<S::equal>(keeps, zero, limited, x[1]);
+    for (unsigned int k = 2; k < nm; ++k)
+      x[k] = compare_and_apply_mask<S::equal>(keeps, zero, zero, x[k]);
+    store_cells<nm>(x, u + index(e, c));
+    return troubled;
   }
 
   /// dg::ModalLimiter::limit_cell() of a scalar law (the characteristic
