@@ -1,4 +1,5 @@
 #include <deal.II/base/quadrature_lib.h>
+#include <deal.II/base/vectorization.h>
 
 #include <granular_dg/base/errors.h>
 #include <granular_dg/base/output.h>
@@ -63,6 +64,36 @@ namespace granular_dg::network
         }
       integrate_moments(g, legendre, quad, x0, h, a, mid, result, depth + 1);
       integrate_moments(g, legendre, quad, x0, h, mid, b, result, depth + 1);
+    }
+
+    /// [min, max] of the finite values v (in SIMD lanes: the same bounds as a
+    /// scalar scan, min and max being exact in any order)
+    std::pair<double, double>
+    value_range(const std::vector<double> &v)
+    {
+      using VA           = VectorizedArray<double>;
+      constexpr auto W   = VA::size();
+      VA             lo  = INFINITY, hi = -INFINITY;
+      std::size_t    i   = 0;
+      for (; i + W <= v.size(); i += W)
+        {
+          VA x;
+          x.load(v.data() + i);
+          lo = std::min(lo, x);
+          hi = std::max(hi, x);
+        }
+      double a = INFINITY, b = -INFINITY;
+      for (unsigned int l = 0; l < W; ++l)
+        {
+          a = std::min(a, lo[l]);
+          b = std::max(b, hi[l]);
+        }
+      for (; i < v.size(); ++i)
+        {
+          a = std::min(a, v[i]);
+          b = std::max(b, v[i]);
+        }
+      return {a, b};
     }
 
     /// whether every entry of v is finite (without a branch per entry)
@@ -154,6 +185,7 @@ namespace granular_dg::network
               slot >= 0 ? -1 - long(slot) :
                           long(lines->index(local(k), ends[i].incoming ? edge_cells[k] - 1 : 0)));
             vertex_ends.at_end.push_back(ends[i].incoming);
+            vertex_ends.edge.push_back(k);
           }
         vertex_ends.first.push_back(vertex_ends.source.size());
       }
@@ -457,11 +489,9 @@ namespace granular_dg::network
         lo = std::min(lo, u.vertices[v]);
         hi = std::max(hi, u.vertices[v]);
       }
-    for (const double v : u.edges)
-      {
-        lo = std::min(lo, v);
-        hi = std::max(hi, v);
-      }
+    const auto [lo_edges, hi_edges] = value_range(u.edges);
+    lo = std::min(lo, lo_edges);
+    hi = std::max(hi, hi_edges);
     for (const unsigned int k : ranks->edges())
       for (const bool start : {true, false})
         if ((start ? net.edges[k].from : net.edges[k].to) == free_end &&
@@ -481,6 +511,10 @@ namespace granular_dg::network
   {
     const auto [lo, hi] = bounds;
     const double tol    = 1e-12 * (hi - lo + std::max(std::abs(lo), std::abs(hi)));
+    // (degree 0: the array holds the means only) the cell to report, if any
+    const auto [lo_s, hi_s] = value_range(s.edges);
+    if (lo_s >= lo - tol && hi_s <= hi + tol)
+      return;
     for (const unsigned int k : ranks->edges())
       for (unsigned int c = 0; c < edge_cells[k]; ++c)
         {
@@ -579,11 +613,11 @@ namespace granular_dg::network
   {
     double speed_over_h = lines->max_speed_over_h(u.edges.data());
     for (const unsigned int v : ranks->vertices())
-      for (const auto &end : junctions[v].ends())
-        if (ranks->owns_edge(end.edge))
+      for (std::size_t i = vertex_ends.first[v]; i < vertex_ends.first[v + 1]; ++i)
+        if (const unsigned int k = vertex_ends.edge[i]; ranks->owns_edge(k))
           speed_over_h = std::max(speed_over_h,
-                                  std::abs(net.edges[end.edge].flux.derivative(u.vertices[v])) /
-                                    edge_h[end.edge]);
+                                  std::abs(lines->flux(local(k)).derivative(u.vertices[v])) /
+                                    edge_h[k]);
     const double dt = disc.cfl / ranks->max(speed_over_h);
     if (!(std::isfinite(dt) && dt > 0))
       throw RunError("time step is " + format_number(dt) + " at t = " + format_number(time) +

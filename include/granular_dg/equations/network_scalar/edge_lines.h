@@ -128,7 +128,7 @@ namespace granular_dg::network
     template <unsigned int nm>
     unsigned int limit_edge(double *u, unsigned int e) const;
     template <unsigned int nm>
-    unsigned int tvb_failures(const double *u, unsigned int e, unsigned int c) const;
+    unsigned int limit_batch(double *u, unsigned int e, unsigned int c) const;
     template <unsigned int nm>
     bool limit_cell(double *u, unsigned int e, unsigned int c, double floor) const;
     template <unsigned int nm>

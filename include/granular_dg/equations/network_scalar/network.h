@@ -330,12 +330,14 @@ namespace granular_dg::network
     /// the ends of each vertex (CSR: those of v are first[v] .. first[v +
     /// 1] - 1, in Junction::ends() order): the array index of the cell
     /// whose trace it takes (source >= 0), or -1 - its slot in exchanged
-    /// (a vertex shared with other ranks); at_end: the trace at x = L
+    /// (a vertex shared with other ranks); at_end: the trace at x = L;
+    /// edge: the end's edge
     struct VertexEnds
     {
       std::vector<std::size_t>   first;
       std::vector<long>          source;
       std::vector<unsigned char> at_end;
+      std::vector<unsigned int>  edge;
     } vertex_ends;
     std::vector<Junction>                            junctions;
     /// the value the edges see at each vertex in the current stage
