@@ -59,12 +59,16 @@ namespace
         data_u.push_back({expression(du[k]), expression(far[k], true), {}});
         data_v.push_back({expression(dv[k]), expression(far[k], true), {}});
       }
-    Discretisation disc;
-    disc.cells_per_unit_length = 64;
+    // the paper's scheme: degree 0, upwind flux, CFL 0.5
+    dg::DiscretizationParameters method;
+    method.degree = 0;
+    method.cfl    = 0.5;
+    NetworkOptions options;
+    options.cells_per_unit_length = 64;
     Graph gu = g, gv = g;
     gu.vertices[0].initial_value = 0.8;
     gv.vertices[0].initial_value = 1.0;
-    NetworkProblem u(gu, disc, data_u), v(gv, disc, data_v);
+    NetworkProblem u(gu, method, options, data_u), v(gv, method, options, data_v);
     u.initialize();
     v.initialize();
 

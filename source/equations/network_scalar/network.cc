@@ -107,22 +107,41 @@ namespace granular_dg::network
     }
   } // namespace
 
-  NetworkProblem::NetworkProblem(const Graph &graph, const Discretisation &discretisation,
-                                 std::vector<EdgeData> edge_data,
+  std::vector<unsigned int>
+  edge_cells(const Graph &graph, const double cells_per_unit_length)
+  {
+    std::vector<unsigned int> n;
+    for (const Edge &e : graph.edges)
+      n.push_back(
+        std::max(1u, static_cast<unsigned int>(std::lround(e.length * cells_per_unit_length))));
+    return n;
+  }
+
+  double
+  snapshot_bytes(const unsigned long n_cells, const dg::DiscretizationParameters &method,
+                 const NetworkOptions &options)
+  {
+    const unsigned int points = method.profile_points > 0 ? method.profile_points :
+                                                            std::max(2u, method.degree + 1);
+    return n_cells * points * (options.write_vtu ? 60. : 0.) + n_cells * points * 40.;
+  }
+
+  NetworkProblem::NetworkProblem(const Graph &graph, const dg::DiscretizationParameters &m,
+                                 const NetworkOptions &o, std::vector<EdgeData> edge_data,
                                  const ExactSolution *exact, const std::string &scene)
     : net(graph)
-    , disc(discretisation)
+    , method(m)
+    , options(o)
     , data(std::move(edge_data))
     , exact(exact)
     , scene(scene)
   {
     AssertThrow(data.size() == net.edges.size(), ExcMessage("one EdgeData per edge"));
-    h_min = 1e300;
-    for (const Edge &e : net.edges)
+    h_min      = 1e300;
+    edge_cells = network::edge_cells(net, options.cells_per_unit_length);
+    for (unsigned int k = 0; k < net.edges.size(); ++k)
       {
-        edge_cells.push_back(std::max(
-          1u, static_cast<unsigned int>(std::lround(e.length * disc.cells_per_unit_length))));
-        edge_h.push_back(e.length / edge_cells.back());
+        edge_h.push_back(net.edges[k].length / edge_cells[k]);
         h_min = std::min(h_min, edge_h.back());
       }
     ranks = std::make_unique<EdgePartition>(net, edge_cells, MPI_COMM_WORLD);
@@ -139,10 +158,10 @@ namespace granular_dg::network
         cells.push_back(edge_cells[k]);
         sizes.push_back(edge_h[k]);
       }
-    const EdgeMethod method{disc.degree,    disc.flux,      disc.limiter,
-                            disc.tvb_M,     disc.indicator, disc.indicator_threshold,
-                            disc.blending_max};
-    lines = std::make_unique<EdgeLines>(method, std::move(laws), cells, sizes);
+    const EdgeMethod edge_method{method.degree, options.flux,     method.limiter,
+                                 method.tvb_M,  method.indicator, method.indicator_threshold,
+                                 method.blending_max};
+    lines = std::make_unique<EdgeLines>(edge_method, std::move(laws), cells, sizes);
     for (const unsigned int k : ranks->edges())
       for (const unsigned int side : {0u, 1u})
         lines->kind(local(k), side) = net.edges[k].vertex_at(side) ? EndKind::vertex :
@@ -156,7 +175,7 @@ namespace granular_dg::network
         double width = 0;
         for (const auto &end : ends[v])
           width += 0.5 * edge_h[end.edge];
-        junctions.emplace_back(net, v, std::move(ends[v]), disc.flux,
+        junctions.emplace_back(net, v, std::move(ends[v]), options.flux,
                                net.vertices[v].width_factor * width);
       }
 
@@ -200,8 +219,8 @@ namespace granular_dg::network
   unsigned int
   NetworkProblem::n_stages() const
   {
-    const bool euler = disc.integrator == Integrator::forward_euler ||
-                       (disc.integrator == Integrator::automatic && disc.degree == 0);
+    const bool euler = options.integrator == Integrator::forward_euler ||
+                       (options.integrator == Integrator::automatic && method.degree == 0);
     return euler ? 1 : dg::SSPRK3<NetworkState>::n_stages;
   }
 
@@ -209,7 +228,7 @@ namespace granular_dg::network
   NetworkProblem::n_dofs() const
   {
     // the edges' modes and the vertex values
-    return net.vertices.size() + n_cells() * (disc.degree + 1);
+    return net.vertices.size() + n_cells() * (method.degree + 1);
   }
 
   unsigned long
@@ -225,13 +244,13 @@ namespace granular_dg::network
     i.scene    = scene;
     i.physics  = System::name;
     i.dim      = 1;
-    i.degree   = disc.degree;
+    i.degree   = method.degree;
     i.n_cells  = n_cells();
     i.n_dofs   = n_dofs();
     i.h_min    = h_min;
     i.n_stages = n_stages();
-    i.snapshot_files = disc.profiles == Profiles::per_edge ? "solution.pvd, profile-NNNN-edge-K.csv" :
-                       disc.profiles == Profiles::one_file ? "solution.pvd, profile-NNNN.csv" :
+    i.snapshot_files = options.profiles == Profiles::per_edge ? "solution.pvd, profile-NNNN-edge-K.csv" :
+                       options.profiles == Profiles::one_file ? "solution.pvd, profile-NNNN.csv" :
                                                              "solution.pvd";
     const std::string integrator = n_stages() == 1 ? "forward_euler" : "ssprk3";
     std::string vertices;
@@ -242,18 +261,16 @@ namespace granular_dg::network
       vertices = std::to_string(net.vertices.size()) + " vertices";
     i.description = std::to_string(net.edges.size()) + " edges, " + vertices + ", " +
                     std::to_string(i.n_cells) + " cells, " + std::to_string(i.n_dofs) +
-                    " DoFs, degree " + std::to_string(disc.degree) + ", " + integrator +
+                    " DoFs, degree " + std::to_string(method.degree) + ", " + integrator +
                     (ranks->parallel() ? "; " + ranks->describe() : "");
     i.method.add("engine", "line");
-    i.method.add("numerical_flux", numerical_flux_names.name(disc.flux));
-    i.method.add("limiter", disc.limiter_name);
-    if (disc.blending_max > 0)
-      i.method.add("subcell_blending", disc.blending_max);
+    i.method.add("numerical_flux", numerical_flux_names.name(options.flux));
+    i.method.add("limiter", method.limiter_name);
+    if (method.blending_max > 0)
+      i.method.add("subcell_blending", method.blending_max);
     i.method.add("scheme", integrator);
     i.method.add("n_edges", static_cast<long long>(net.edges.size()));
-    const unsigned int points = profile_points();
-    i.bytes_per_snapshot = i.n_cells * points * (disc.write_vtu ? 60. : 0.) +
-                           i.n_cells * points * 40.;
+    i.bytes_per_snapshot = snapshot_bytes(i.n_cells, method, options);
     return i;
   }
 
@@ -266,7 +283,7 @@ namespace granular_dg::network
   double
   NetworkProblem::initialize()
   {
-    const QGauss<1> quad(disc.degree + 3);
+    const QGauss<1> quad(method.degree + 3);
     for (const unsigned int k : ranks->edges())
       {
         const double h = edge_h[k];
@@ -274,7 +291,7 @@ namespace granular_dg::network
         for (unsigned int c = 0; c < edge_cells[k]; ++c)
           {
             const double        x0 = c * h;
-            std::vector<double> moments(disc.degree + 1, 0.);
+            std::vector<double> moments(method.degree + 1, 0.);
             // split at the known jumps first, then refine adaptively
             std::vector<double> pieces{x0, x0 + h};
             for (const double b : data[k].initial_breakpoints)
@@ -284,7 +301,7 @@ namespace granular_dg::network
             for (unsigned int p = 0; p + 1 < pieces.size(); ++p)
               integrate_moments(*data[k].initial, lines->legendre(), quad, x0, h, pieces[p],
                                 pieces[p + 1], moments, 0);
-            for (unsigned int m = 0; m <= disc.degree; ++m)
+            for (unsigned int m = 0; m <= method.degree; ++m)
               u.edges[lines->index(local(k), c) + m] = moments[m] / h;
           }
       }
@@ -420,8 +437,8 @@ namespace granular_dg::network
                 data[k].far_end->set_time(time);
                 ghost = data[k].far_end->value(Point<1>(x));
               }
-            sum += in ? e.flux.numerical_flux(disc.flux, ghost, inside) :
-                        -e.flux.numerical_flux(disc.flux, inside, ghost);
+            sum += in ? e.flux.numerical_flux(options.flux, ghost, inside) :
+                        -e.flux.numerical_flux(options.flux, inside, ghost);
           }
       }
     return sum;
@@ -526,7 +543,7 @@ namespace granular_dg::network
                             "], the range of the cell averages, vertex values and "
                             "far-end data at the start of the step (degree 0 is monotone "
                             "only up to its CFL limit; CFL number " +
-                            format_number(disc.cfl) + ")");
+                            format_number(method.cfl) + ")");
         }
   }
 
@@ -557,7 +574,7 @@ namespace granular_dg::network
   NetworkProblem::post_stage_checks(const NetworkState &s, const double stage_time)
   {
     const bool principle =
-      disc.degree == 0 && std::isfinite(bounds.first) && std::isfinite(bounds.second);
+      method.degree == 0 && std::isfinite(bounds.first) && std::isfinite(bounds.second);
     if (principle)
       {
         // a vertex is a neighbour of its edge ends: its (stage) value is a
@@ -602,7 +619,7 @@ namespace granular_dg::network
       // report the first cell whose modes are not finite
       for (const unsigned int k : ranks->edges())
         for (unsigned int c = 0; c < edge_cells[k]; ++c)
-          for (unsigned int m = 0; m <= disc.degree; ++m)
+          for (unsigned int m = 0; m <= method.degree; ++m)
             if (!std::isfinite(s.edges[lines->index(local(k), c) + m]))
               throw failure(stage_time, int(k), (c + 0.5) * edge_h[k],
                             s.edges[lines->index(local(k), c)], "state is not finite");
@@ -618,7 +635,7 @@ namespace granular_dg::network
           speed_over_h = std::max(speed_over_h,
                                   std::abs(lines->flux(local(k)).derivative(u.vertices[v])) /
                                     edge_h[k]);
-    const double dt = disc.cfl / ranks->max(speed_over_h);
+    const double dt = method.cfl / ranks->max(speed_over_h);
     if (!(std::isfinite(dt) && dt > 0))
       throw RunError("time step is " + format_number(dt) + " at t = " + format_number(time) +
                      " (all characteristic speeds vanish or are not finite)");
@@ -630,7 +647,7 @@ namespace granular_dg::network
   {
     t = time;
     stage_inflow.clear();
-    if (disc.degree == 0)
+    if (method.degree == 0)
       bounds = range_of_step(t, dt);
     if (n_stages() == 1)
       {
@@ -770,7 +787,7 @@ namespace granular_dg::network
   NetworkProblem::errors(const ExactSolution &solution, const double time) const
   {
     NetworkErrors   e;
-    const QGauss<1> quad(2 * disc.degree + 8);
+    const QGauss<1> quad(2 * method.degree + 8);
     double          l2 = 0;
     e.l1_per_edge.assign(net.edges.size(), 0.);
     for (const unsigned int k : ranks->edges())
@@ -824,7 +841,7 @@ namespace granular_dg::network
   double
   NetworkProblem::l1_distance(const NetworkProblem &other) const
   {
-    const QGauss<1> quad(disc.degree + 2);
+    const QGauss<1> quad(method.degree + 2);
     double          sum = 0;
     for (const unsigned int v : ranks->vertices())
       if (ranks->reports_vertex(v))
@@ -924,7 +941,7 @@ namespace granular_dg::network
       header.emplace_back("l1_error");
     if (exact && vertices)
       header.emplace_back("l1_error_vertex");
-    if (disc.blending_max > 0)
+    if (method.blending_max > 0)
       header.emplace_back("blended_cells");
     return header;
   }
@@ -933,7 +950,7 @@ namespace granular_dg::network
   NetworkProblem::timeseries_comment() const
   {
     const std::string blended =
-      disc.blending_max > 0 ? "; blended_cells: cells of all edges with a blending factor > 0" : "";
+      method.blending_max > 0 ? "; blended_cells: cells of all edges with a blending factor > 0" : "";
     if (net.is_star())
       return "mass_balance_residual = |mass - mass(0) - boundary_inflow| / ||u(0)||_L1; "
              "rh_residual = sum_in F - sum_out F at the vertex" +
@@ -963,7 +980,7 @@ namespace granular_dg::network
         if (vertices)
           row.push_back(e.l1_vertex);
       }
-    if (disc.blending_max > 0)
+    if (method.blending_max > 0)
       {
         // cells of all edges whose last stage blended in finite volumes
         row.push_back(ranks->sum(double(lines->n_blended_cells())));
@@ -1005,7 +1022,7 @@ namespace granular_dg::network
     for (unsigned int k = 0; k < modes.size(); ++k)
       {
         ar.io(modes[k]);
-        if (modes[k].size() != edge_cells[k] * (disc.degree + 1))
+        if (modes[k].size() != edge_cells[k] * (method.degree + 1))
           throw RunError("the checkpoint's network has other edge sizes");
       }
     for (double *x : {&balance.mass0, &balance.scale, &balance.last, &balance.max_residual,
@@ -1064,7 +1081,7 @@ namespace granular_dg::network
         d.add("n_vertex_ends", ends);
       }
     d.add("integrator", n_stages() == 1 ? "forward_euler" : "ssprk3");
-    d.add("cfl", disc.cfl);
+    d.add("cfl", method.cfl);
     d.add("mass_initial", balance.mass0);
     d.add("mass_final", mass());
     d.add("boundary_inflow", boundary_inflow());

@@ -106,7 +106,7 @@ namespace granular_dg::network
                                  const double time, const Samples &profile,
                                  const std::vector<double> &vertices) const
   {
-    if (disc.profiles == Profiles::one_file)
+    if (options.profiles == Profiles::one_file)
       {
         std::vector<std::string> header{"edge", "x", "u", "flux"};
         if (exact)
@@ -161,7 +161,7 @@ namespace granular_dg::network
     // gathered on rank 0, which writes the files (once when the VTU and the
     // profiles sample alike)
     const auto vertices = vertex_values();
-    const bool vtu = disc.write_vtu, profiles = disc.profiles != Profiles::none;
+    const bool vtu = options.write_vtu, profiles = options.profiles != Profiles::none;
     Samples    vtu_samples = vtu ? gathered_sample(vtu_points()) : Samples();
     if (profiles)
       {
@@ -182,11 +182,11 @@ namespace granular_dg::network
 
   RunResult
   run_network(const Graph &graph, const std::vector<EdgeData> &data,
-              const Discretisation &discretisation, const ExactSolution *exact,
-              const RunParameters &params, const bool write_files,
+              const dg::DiscretizationParameters &method, const NetworkOptions &options,
+              const ExactSolution *exact, const RunParameters &params, const bool write_files,
               const std::string &scene)
   {
-    NetworkProblem p(graph, discretisation, data, exact, scene);
+    NetworkProblem p(graph, method, options, data, exact, scene);
     TimeLoop       loop(p, params, write_files);
     return loop.run();
   }
@@ -217,7 +217,8 @@ namespace granular_dg::network
 
   void
   run_network_convergence(const Graph &graph, const std::vector<EdgeData> &data,
-                          const Discretisation &discretisation, const ExactSolution &exact,
+                          const dg::DiscretizationParameters &method,
+                          const NetworkOptions &options, const ExactSolution &exact,
                           const RunParameters &params, const std::vector<double> &cfl)
   {
     CsvWriter                table, rates;
@@ -237,9 +238,10 @@ namespace granular_dg::network
     JsonObject errors;
     for (unsigned int i = 0; i < params.convergence_degrees.size(); ++i)
       {
-        Discretisation d = discretisation;
-        d.degree         = params.convergence_degrees[i];
-        d.cfl            = cfl[i];
+        dg::DiscretizationParameters d = method;
+        NetworkOptions               o = options;
+        d.degree                       = params.convergence_degrees[i];
+        d.cfl                          = cfl[i];
         std::cout << "  degree " << d.degree << ", CFL " << format_number(d.cfl) << "\n"
                   << "  level    cells      dofs   steps      L1 error    EOC   L1 vertex"
                      "    CPU s"
@@ -248,8 +250,8 @@ namespace granular_dg::network
         std::vector<double> errs, eocs;
         for (const unsigned int cells : params.convergence_cells)
           {
-            d.cells_per_unit_length = cells;
-            NetworkProblem  p(graph, d, data, &exact);
+            o.cells_per_unit_length = cells;
+            NetworkProblem  p(graph, d, o, data, &exact);
             const RunResult r   = TimeLoop(p, params, false).run();
             const auto      e   = p.errors(exact, r.final_time);
             const double    eoc = e_prev > 0 ? std::log(e_prev / e.l1) /

@@ -56,7 +56,8 @@ namespace granular_dg::network
             const dg::DiscretizationParameters &method);
 
       GraphInput                     input;
-      Discretisation                 disc;
+      dg::DiscretizationParameters   method;
+      NetworkOptions                 options;
       std::shared_ptr<ExactSolution> exact;
       std::vector<double>            cfl;
     };
@@ -221,7 +222,7 @@ namespace granular_dg::network
     /// makes them (round(L * cells), at least one), in double: counted
     /// before anything is allocated, without overflow.
     std::vector<double>
-    edge_cells(const Graph &graph, const double cells)
+    cell_counts(const Graph &graph, const double cells)
     {
       std::vector<double> n;
       for (const Edge &e : graph.edges)
@@ -241,13 +242,13 @@ namespace granular_dg::network
     {
       const bool study = common.convergence;
       const std::vector<unsigned int> degrees =
-        study ? common.convergence_degrees : std::vector<unsigned int>{c.disc.degree};
+        study ? common.convergence_degrees : std::vector<unsigned int>{c.method.degree};
       const double cells =
         study ? double(*std::max_element(common.convergence_cells.begin(),
                                          common.convergence_cells.end())) :
-                c.disc.cells_per_unit_length;
+                c.options.cells_per_unit_length;
       const unsigned int degree = *std::max_element(degrees.begin(), degrees.end());
-      const auto         n      = edge_cells(c.input.graph, cells);
+      const auto         n      = cell_counts(c.input.graph, cells);
       double             total  = 0;
       for (const double x : n)
         total += x;
@@ -259,14 +260,14 @@ namespace granular_dg::network
       const double cell_bytes =
         std::max(total / ranks, *std::max_element(n.begin(), n.end())) * per_cell;
       const bool   snapshots  = !study && !common.benchmark.enabled &&
-                             (c.disc.write_vtu || c.disc.profiles != Profiles::none);
-      const double points     = c.disc.profile_points > 0 ? std::max(2u, c.disc.profile_points) :
+                             (c.options.write_vtu || c.options.profiles != Profiles::none);
+      const double points     = c.method.profile_points > 0 ? std::max(2u, c.method.profile_points) :
                                                             std::max(2u, degree + 1);
       const double snapshot_bytes =
         !snapshots ? 0. :
                      total * points *
-                       ((c.disc.write_vtu ? vtu_bytes_per_point : 0.) +
-                        (c.disc.profiles != Profiles::none ? profile_bytes_per_point : 0.));
+                       ((c.options.write_vtu ? vtu_bytes_per_point : 0.) +
+                        (c.options.profiles != Profiles::none ? profile_bytes_per_point : 0.));
       const double needed = edge_bytes + cell_bytes + snapshot_bytes;
       // the smallest over the ranks: they all refuse, or none
       const double available = Utilities::MPI::job_supports_mpi() ?
@@ -300,7 +301,7 @@ namespace granular_dg::network
     warn_of_short_edges(const Case &c, const double cells)
     {
       const Graph &graph = c.input.graph;
-      const auto   n     = edge_cells(graph, cells);
+      const auto   n     = cell_counts(graph, cells);
       const double dx    = 1. / cells;
       unsigned int narrowest = 0, count = 0;
       for (unsigned int k = 0; k < n.size(); ++k)
@@ -342,31 +343,23 @@ namespace granular_dg::network
       require(method.skip_tolerance == 0, "Time stepping/skip tolerance", method.skip_tolerance,
               "0 here: the network computes every cell of every edge in every step (skipping "
               "quiet cells is built in the DG solver of the 1D scenes, not for the network)");
-      Case &c = *this;
-      c.disc.degree         = method.degree;
-      c.disc.flux           = numerical_flux_names.parse("Discretization/numerical flux",
-                                                         method.flux);
-      c.disc.cfl            = method.cfl;
-      c.disc.limiter        = method.limiter;
-      c.disc.limiter_name   = method.limiter_name;
-      c.disc.tvb_M          = method.tvb_M;
-      c.disc.indicator      = method.indicator;
-      c.disc.indicator_threshold = method.indicator_threshold;
       require(method.engine != dg::Engine::matrix_free, "Discretization/engine", "matrix_free",
               "auto or line here: the network's edges run in one line engine (EdgeLines)");
-      c.disc.blending_max = method.blending_max;
-      c.disc.profile_points = method.profile_points;
-      c.disc.write_vtu      = common.write_vtu;
+      Case &c          = *this;
+      c.method         = method;
+      c.options.flux   = numerical_flux_names.parse("Discretization/numerical flux", method.flux);
+      c.options.write_vtu = common.write_vtu;
       common.require_format_fits(1);  // the edges are 1D
 
       prm.enter_subsection("Time stepping");
-      c.disc.integrator =
+      c.options.integrator =
         integrator_names.parse("Time stepping/integrator", prm.get("integrator"));
       prm.leave_subsection();
 
       prm.enter_subsection("Network");
-      c.disc.cells_per_unit_length = prm.get_integer("cells per unit length");
-      c.disc.profiles = profile_names.parse("Network/edge profiles", prm.get("edge profiles"));
+      c.options.cells_per_unit_length = prm.get_integer("cells per unit length");
+      c.options.profiles =
+        profile_names.parse("Network/edge profiles", prm.get("edge profiles"));
       const std::string exact_name = prm.get("exact solution");
       c.input.parse(prm);
       prm.leave_subsection();
@@ -379,7 +372,7 @@ namespace granular_dg::network
           for (const auto &d : c.input.data)
             f.push_back(d.initial);
           // the vertex values of a stationary state: given, or c_0 of the data
-          NetworkProblem probe(c.input.graph, c.disc, c.input.data);
+          NetworkProblem probe(c.input.graph, c.method, c.options, c.input.data);
           probe.initialize();
           c.exact = std::make_shared<InitialData>(f, probe.vertex_values());
         }
@@ -398,7 +391,7 @@ namespace granular_dg::network
       // forward Euler is unstable with DG of degree >= 1 at every CFL number
       for (const unsigned int p : common.convergence ? common.convergence_degrees :
                                                        std::vector<unsigned int>{method.degree})
-        require(c.disc.integrator != Integrator::forward_euler || p == 0,
+        require(c.options.integrator != Integrator::forward_euler || p == 0,
                 "Time stepping/integrator", "forward_euler",
                 "auto or ssprk3 at degree " + std::to_string(p) +
                   " (forward Euler is unstable with DG of degree >= 1)");
@@ -414,16 +407,21 @@ namespace granular_dg::network
       warn_of_short_edges(c, common.convergence ?
                                double(*std::max_element(common.convergence_cells.begin(),
                                                         common.convergence_cells.end())) :
-                               c.disc.cells_per_unit_length);
+                               c.options.cells_per_unit_length);
       {
-        NetworkProblem probe(c.input.graph, c.disc, c.input.data, c.exact.get());
-        require_reasonable_snapshot_count(common, probe.info().bytes_per_snapshot);
+        const auto    n     = edge_cells(c.input.graph, c.options.cells_per_unit_length);
+        unsigned long cells = 0;
+        for (const unsigned int x : n)
+          cells += x;
+        require_reasonable_snapshot_count(common, snapshot_bytes(cells, c.method, c.options));
       }
       begin_output(common);
       if (common.convergence)
-        run_network_convergence(c.input.graph, c.input.data, c.disc, *c.exact, common, c.cfl);
+        run_network_convergence(c.input.graph, c.input.data, c.method, c.options, *c.exact,
+                                common, c.cfl);
       else
-        run_network(c.input.graph, c.input.data, c.disc, c.exact.get(), common, true);
+        run_network(c.input.graph, c.input.data, c.method, c.options, c.exact.get(), common,
+                    true);
     }
 
     const RegisterScene registration(dg::scene_entry<Case>(

@@ -50,28 +50,29 @@ namespace granular_dg::network
     none
   };
 
-  /// The numerical method on the network.
-  struct Discretisation
+  /// What the network adds to the method of every scene
+  /// (dg::DiscretizationParameters): its numerical flux among the scalar
+  /// ones, the mesh of the edges, the integrator and what a snapshot writes.
+  struct NetworkOptions
   {
-    unsigned int      degree = 0;
-    NumericalFlux     flux   = NumericalFlux::upwind;
-    double            cfl    = 0.5;
-    dg::LimiterType   limiter = dg::LimiterType::none;
-    std::string       limiter_name = "none";
-    double            tvb_M   = 0.;
-    dg::TroubleIndicator indicator = dg::TroubleIndicator::everywhere;
-    double            indicator_threshold = 0.;
-    /// Limiter/subcell blending on every edge: the largest factor (0: off)
-    double            blending_max = 0.;
+    NumericalFlux flux = NumericalFlux::upwind;
     /// 2^l at grid level l: an edge of length L gets round(L * this) cells
-    double            cells_per_unit_length = 256;
-    Integrator        integrator          = Integrator::automatic;
-    /// output: sample points per cell of the profiles (0: degree + 1, at
-    /// least 2), and whether solution-NNNN.vtu are written
-    unsigned int      profile_points = 0;
-    bool              write_vtu      = true;
-    Profiles          profiles       = Profiles::per_edge;
+    double        cells_per_unit_length = 256;
+    Integrator    integrator            = Integrator::automatic;
+    Profiles      profiles              = Profiles::per_edge;
+    /// whether solution-NNNN.vtu are written
+    bool          write_vtu = true;
   };
+
+  /// The cells of every edge of graph at cells per unit length (at least one).
+  std::vector<unsigned int>
+  edge_cells(const Graph &graph, double cells_per_unit_length);
+
+  /// Bytes of one snapshot of the network (the estimate of
+  /// require_reasonable_snapshot_count()), without building it.
+  double
+  snapshot_bytes(unsigned long n_cells, const dg::DiscretizationParameters &method,
+                 const NetworkOptions &options);
 
   /// Data of one edge: initial data u(x) and, for a Dirichlet far end, g(t)
   /// (evaluated at the far end point). initial_breakpoints: where the
@@ -111,9 +112,9 @@ namespace granular_dg::network
   {
   public:
     /// The vertices' widths and initial values are the graph's.
-    NetworkProblem(const Graph &graph, const Discretisation &discretisation,
-                   std::vector<EdgeData> data, const ExactSolution *exact = nullptr,
-                   const std::string &scene = "network");
+    NetworkProblem(const Graph &graph, const dg::DiscretizationParameters &method,
+                   const NetworkOptions &options, std::vector<EdgeData> data,
+                   const ExactSolution *exact = nullptr, const std::string &scene = "network");
     ~NetworkProblem() override;
 
     // ------------------------------------------------------------ Evolution
@@ -285,12 +286,13 @@ namespace granular_dg::network
     /// sample points per cell of the VTU (at least 2) and of the profiles
     unsigned int vtu_points() const
     {
-      return disc.profile_points > 0 ? std::max(2u, disc.profile_points) :
-                                       std::max(2u, disc.degree + 1);
+      return method.profile_points > 0 ? std::max(2u, method.profile_points) :
+                                         std::max(2u, method.degree + 1);
     }
     unsigned int profile_points() const
     {
-      return disc.profile_points > 0 ? disc.profile_points : std::max(2u, disc.degree + 1);
+      return method.profile_points > 0 ? method.profile_points :
+                                         std::max(2u, method.degree + 1);
     }
     /// rank 0: the files of a snapshot from the gathered samples and vertex
     /// values (write_vtu releases the samples of each edge once they are in
@@ -306,8 +308,9 @@ namespace granular_dg::network
     state_io(Archive &ar, std::vector<double> &vertices, std::vector<std::vector<double>> &modes,
              double &total_inflow);
 
-    Graph                 net;
-    Discretisation        disc;
+    Graph                       net;
+    dg::DiscretizationParameters method;
+    NetworkOptions              options;
     std::vector<EdgeData> data;
     const ExactSolution  *exact;
     std::string           scene;
@@ -361,7 +364,8 @@ namespace granular_dg::network
   /// plane, profile-NNNN-edge-K.csv, timeseries.csv, summary.json).
   RunResult
   run_network(const Graph &graph, const std::vector<EdgeData> &data,
-              const Discretisation &discretisation, const ExactSolution *exact,
+              const dg::DiscretizationParameters &method, const NetworkOptions &options,
+              const ExactSolution *exact,
               const RunParameters &params, bool write_files,
               const std::string &scene = "network");
 
@@ -372,6 +376,7 @@ namespace granular_dg::network
   /// the CFL number of degree i of the list.
   void
   run_network_convergence(const Graph &graph, const std::vector<EdgeData> &data,
-                          const Discretisation &discretisation, const ExactSolution &exact,
+                          const dg::DiscretizationParameters &method,
+                          const NetworkOptions &options, const ExactSolution &exact,
                           const RunParameters &params, const std::vector<double> &cfl);
 } // namespace granular_dg::network
