@@ -19,7 +19,7 @@ from granular_dg import outputs, parser
 from granular_dg.compare import value_at
 from granular_dg.run import run_case
 
-# u(3, 4) of the closed form (include/granular_dg/equations/friction_column/
+# u(3, 4) of the closed form (include/granular_dg/equations/column/
 # closed_form.h, u_b = -1): z = 3 slides until t_s(3) = 4.7196
 EXACT_STRAIN_3_4 = -0.147769340095
 

@@ -6,7 +6,7 @@ hopper flows I) by shooting from the
 axis with SciPy's DOP853 (rtol 1e-13) and Brent's method, and writes the
 columns the tests compare (theta,sigma,psi,T_rr,T_rtheta,T_thetatheta,T_phiphi
 per unit rho g r) at the points of radial-field.csv. It shares no code with
-source/equations/hopper_stress/radial_field.cc (Boost.odeint Dormand-Prince
+source/equations/hopper/radial_field.cc (Boost.odeint Dormand-Prince
 5(4) and TOMS 748).
 
   /usr/bin/python3 contrib/hopper_radial_reference.py cone 30 61 > tests/hopper/radial_cone.output

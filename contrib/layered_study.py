@@ -1,7 +1,7 @@
 #!/usr/bin/python3
 """The layered 1D strip (prm/layered_1d.prm, case (b)) at t = 240: the naive
 flux against the interface-aware one (CONFIGS), and the work-precision chart
-(doc/layered.md, "Work precision").
+(doc/layered_strip.md, "Work precision").
 
     contrib/layered_study.py BUILD_DIR OUT_DIR REFERENCE_MODES_CSV [--quick]
         [--only aware-indicator --rows-from doc/figures/layered_study.csv]
@@ -73,7 +73,7 @@ def chart(rows, degrees, path):
             if sel:
                 ax.loglog([r["time_loop_cpu_s"] for r in sel], [r["l1_strain_error"] for r in sel],
                           STYLES[name], label="%s P%d" % (name, degree))
-    # Clawpack's second-order f-wave finite volumes on the same case (doc/layered.md)
+    # Clawpack's second-order f-wave finite volumes on the same case (doc/layered_strip.md)
     ax.loglog([1, 5], [0.09, 0.04], "k*", ms=12, label="Clawpack f-wave")
     plot.label(ax, "CPU time of the time loop [s]", "L1 error of the strain at t = 240",
                "layered 1D strip: error against the reference vs CPU time")

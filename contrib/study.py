@@ -162,7 +162,7 @@ STABILITY = {
         factors=[0.25, 0.5, 0.8, 1.0, 1.2, 1.5, 2.0, 3.0], quick_factors=[0.5, 1.5],
         choices=[("LLF, no limiter", flux_limiter("local_lax_friedrichs", "none"))],
         quick_choices=[0]),
-    # case (b) of doc/layered.md shortened (layers of width 1, rho = K = 3 | 1,
+    # case (b) of doc/layered_strip.md shortened (layers of width 1, rho = K = 3 | 1,
     # 4 cells per layer, t = 50) against a P3 impedance run at 32 cells per layer
     "layered_interfaces": dict(
         scene="layered_1d", prm="prm/layered_1d.prm", mesh="Mesh/cells x",

@@ -49,7 +49,7 @@ admissibility_case(network_maximum_principle PRM ../prm/network_example_7_3.prm
   ABSENT out/solution-0001.vtu out/profile-0001-edge-1.csv)
 # layered media with Limiter/strain positivity = true: the model declares
 # eps >= 0; the tensile tail of case (b) (mean strain < 0) stops the run
-# (with the limiter in every cell, as in doc/layered.md)
+# (with the limiter in every cell, as in doc/layered_strip.md)
 admissibility_case(layered_negative_strain PRM ../prm/layered_1d.prm
   ARGS --set "Limiter/strain positivity=true" --set Limiter/indicator=everywhere --set Output/directory=out
        --set "Output/write vtu=false"

@@ -1,5 +1,5 @@
 // Checks of the exact solution of the linear column (m = 1, G = 0; Coffey & Gremaud,
-// section 2) in include/granular_dg/equations/friction_column/closed_form.h,
+// section 2) in include/granular_dg/equations/column/closed_form.h,
 // against the problem it solves, not against itself:
 //  - the wall condition u(0, t) = u_b and the front value u(t, t) = u_b e^{-t/2};
 //  - the PDE u_tt - u_zz - u_z = 0 (2.14) by central differences (h = 1e-3:
@@ -12,7 +12,7 @@
 //    differences): t_s(0) = 3.2528877612, and z_s(8) = 6.92303434;
 //  - the interpolated stop time against a direct root at an off-node point;
 //  - the frozen profile stays stuck: |u_z/u| < 1 (friction can hold it).
-#include <granular_dg/equations/friction_column/closed_form.h>
+#include <granular_dg/equations/column/closed_form.h>
 
 #include <cmath>
 #include <cstdio>

@@ -20,8 +20,8 @@
 
 #include <granular_dg/dg/cell_quadrature.h>
 #include <granular_dg/dg/dg_operator.h>
-#include <granular_dg/equations/hopper_stress/radial_field.h>
-#include <granular_dg/equations/hopper_stress/system.h>
+#include <granular_dg/equations/hopper/radial_field.h>
+#include <granular_dg/equations/hopper/system.h>
 
 #include <complex>
 #include <cstdio>

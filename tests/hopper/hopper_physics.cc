@@ -1,5 +1,5 @@
 // Unit tests of the hopper physics (include/granular_dg/equations/
-// hopper_stress/system.h, radial_field.h, transition.h), wedge and cone,
+// hopper/system.h, radial_field.h, transition.h), wedge and cone,
 // delta = 32.1 deg, Phi = 11.7 deg. Every "error" line must be ~0 (the
 // .output holds zeros; numdiff -a 1e-7: the finite-difference Jacobian is
 // accurate to ~1e-10 for |psi| <= 0.9 (pi/4 - delta/2)); the "flag" lines are exact 0/1 facts.
@@ -20,9 +20,9 @@
 //  - the radial field is a steady state of the scaled PDE (and decays like
 //    e^{-tau} in the unscaled one): |d_theta F(U_r) - G(U_r)| ~ 0, which
 //    checks the sources (7)/(11) against the BVP (16) (derived separately).
-#include <granular_dg/equations/hopper_stress/radial_field.h>
-#include <granular_dg/equations/hopper_stress/system.h>
-#include <granular_dg/equations/hopper_stress/transition.h>
+#include <granular_dg/equations/hopper/radial_field.h>
+#include <granular_dg/equations/hopper/system.h>
+#include <granular_dg/equations/hopper/transition.h>
 
 #include <cstdio>
 #include <random>

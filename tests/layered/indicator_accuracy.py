@@ -9,7 +9,7 @@ usage: indicator_accuracy.py EXE PRM [--tolerance 0.003]
 Runs the case without a limiter (writing its modes at t = 240), then as
 shipped and with Limiter/indicator = everywhere, both measured against the
 unlimited run (Exact solution/reference file). The unlimited run is itself
-6.0e-4 (L1 strain) from a P3 run at 32 cells per layer (doc/layered.md), so
+6.0e-4 (L1 strain) from a P3 run at 32 cells per layer (doc/layered_strip.md), so
 an L1 distance below the tolerance 0.003 puts the shipped case within 0.0036
 of that reference, against the target 0.03. The limiter in every cell must
 fail the same check (measured 0.128 from the reference): the check

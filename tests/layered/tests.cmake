@@ -5,7 +5,7 @@
 # limiter in every cell (Limiter/indicator = everywhere; the shipped case
 # limits only flagged cells, tested by layered/indicator_accuracy): regression
 # of the cell-centre profiles at t = 240 (stored from the runs reviewed in
-# doc/layered.md). Tolerance 1e-7 absolute (round-off is ~1e-12 here).
+# doc/layered_strip.md). Tolerance 1e-7 absolute (round-off is ~1e-12 here).
 foreach(variant aware naive)
   if(variant STREQUAL aware)
     set(flux impedance)

@@ -14,7 +14,7 @@
 
 #include <deal.II/base/function_parser.h>
 
-#include <granular_dg/equations/network_scalar/network.h>
+#include <granular_dg/equations/network/network.h>
 
 #include <cmath>
 #include <iomanip>

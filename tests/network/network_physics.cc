@@ -13,8 +13,8 @@
 // Printed deviations are compared with 0 at 1e-12 (absolute).
 
 #include <granular_dg/base/errors.h>
-#include <granular_dg/equations/network_scalar/system.h>
-#include <granular_dg/equations/network_scalar/junction.h>
+#include <granular_dg/equations/network/system.h>
+#include <granular_dg/equations/network/junction.h>
 
 #include <cmath>
 #include <iomanip>

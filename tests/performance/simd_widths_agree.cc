@@ -19,13 +19,13 @@
 #include <granular_dg/dg/cell_quadrature.h>
 #include <granular_dg/dg/dg_operator.h>
 #include <granular_dg/dg/dg_operator.templates.h>
-#include <granular_dg/equations/layered_elasticity/system.h>
+#include <granular_dg/equations/layered_strip/system.h>
 
 #include <cmath>
 #include <cstdio>
 
 using namespace granular_dg;
-using namespace granular_dg::elasticity;
+using namespace granular_dg::layered_strip;
 
 // the program's operator (instantiated in the library)
 extern template class granular_dg::dg::DGOperator<2, System<2>>;

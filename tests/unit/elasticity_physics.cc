@@ -1,5 +1,5 @@
 // Unit tests of the elasticity physics (include/granular_dg/equations/
-// layered_elasticity/system.h), for both stress laws and dim = 1, 2:
+// layered_strip/system.h), for both stress laws and dim = 1, 2:
 //  - flux consistency: F*(U, U, n) = F(U) n for the LLF and impedance fluxes;
 //  - conservation: F*(U_m, U_p, n) = -F*(U_p, U_m, -n);
 //  - eigenvalues: the flux Jacobian by central differences, A = dF.n/dU,
@@ -8,13 +8,13 @@
 //  - sigma' and the stored energy against differences of sigma.
 // Every line prints an error that must be ~0 (the .output holds zeros,
 // compared with numdiff at an absolute tolerance of 1e-7).
-#include <granular_dg/equations/layered_elasticity/system.h>
+#include <granular_dg/equations/layered_strip/system.h>
 
 #include <cstdio>
 #include <random>
 
 using namespace granular_dg;
-using namespace granular_dg::elasticity;
+using namespace granular_dg::layered_strip;
 
 template <int dim>
 void

@@ -11,13 +11,13 @@
 //  - for one material and the linear law (beta = 0) the flux is the exact
 //    Godunov flux of linear acoustics, F.n average - R|Lambda|L (U_p - U_m)/2.
 // Every error line must be ~0 (numdiff, absolute tolerance 1e-7).
-#include <granular_dg/equations/layered_elasticity/system.h>
+#include <granular_dg/equations/layered_strip/system.h>
 
 #include <cstdio>
 #include <random>
 
 using namespace granular_dg;
-using namespace granular_dg::elasticity;
+using namespace granular_dg::layered_strip;
 
 template <int dim>
 void

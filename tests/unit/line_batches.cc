@@ -20,8 +20,8 @@
 #include <deal.II/fe/mapping_q1.h>
 
 #include <granular_dg/dg/line_operator.h>
-#include <granular_dg/equations/friction_column/system.h>
-#include <granular_dg/equations/layered_elasticity/system.h>
+#include <granular_dg/equations/column/system.h>
+#include <granular_dg/equations/layered_strip/system.h>
 #include <granular_dg/equations/skeleton/system.h>
 
 #include "line_test_tools.h"
@@ -108,8 +108,8 @@ namespace
 int
 main()
 {
-  using Elasticity = elasticity::System<1>;
-  const std::vector<elasticity::Material> layers{{3., 3., 0.3}, {1., 1., 0.3}};
+  using Elasticity = layered_strip::System<1>;
+  const std::vector<layered_strip::Material> layers{{3., 3., 0.3}, {1., 1., 0.3}};
   dg::BoundaryMap<1>                      wall_outflow;
   wall_outflow[0].kind = dg::BoundaryKind::wall;
   wall_outflow[1].kind = dg::BoundaryKind::outflow;
@@ -118,11 +118,11 @@ main()
     return i == 0 ? 0.05 * r : 0.3 * r;
   };
   check("elasticity quadratic impedance",
-        Elasticity(elasticity::StressLaw::quadratic, layers, elasticity::NumericalFlux::impedance),
+        Elasticity(layered_strip::StressLaw::quadratic, layers, layered_strip::NumericalFlux::impedance),
         wall_outflow, false, strain_velocity);
   check("elasticity exponential LLF",
-        Elasticity(elasticity::StressLaw::exponential, layers,
-                   elasticity::NumericalFlux::local_lax_friedrichs),
+        Elasticity(layered_strip::StressLaw::exponential, layers,
+                   layered_strip::NumericalFlux::local_lax_friedrichs),
         wall_outflow, false, strain_velocity);
 
   column::Parameters column_parameters;

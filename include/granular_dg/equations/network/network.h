@@ -1,0 +1,382 @@
+#pragma once
+
+#include <deal.II/base/function.h>
+
+#include <granular_dg/base/evolution.h>
+#include <granular_dg/base/run_parameters.h>
+#include <granular_dg/dg/limiter.h>
+#include <granular_dg/dg/parameters.h>
+#include <granular_dg/dg/time_integrator.h>
+#include <granular_dg/equations/network/edge_lines.h>
+#include <granular_dg/equations/network/edge_partition.h>
+#include <granular_dg/equations/network/exact_solution.h>
+#include <granular_dg/equations/network/graph.h>
+#include <granular_dg/equations/network/junction.h>
+#include <granular_dg/equations/network/system.h>
+
+#include <algorithm>
+#include <cmath>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace granular_dg::network
+{
+  /// The state of the network: the modes of the edges' cells (EdgeLines'
+  /// layout: edge after edge) and the value of every vertex. Has what
+  /// dg::SSPRK3 needs of a vector. On several MPI ranks a rank holds the
+  /// modes of its own edges and keeps the values of the vertices they meet.
+  struct NetworkState
+  {
+    std::vector<double> edges;
+    std::vector<double> vertices;
+
+    void reinit(const NetworkState &other);
+  };
+
+  enum class Integrator
+  {
+    automatic,     ///< forward_euler at degree 0 (the paper's scheme), else ssprk3
+    forward_euler, ///< (4.1): one explicit Euler step
+    ssprk3
+  };
+
+  /// What a snapshot writes besides solution-NNNN.vtu.
+  enum class Profiles
+  {
+    per_edge, ///< profile-NNNN-edge-K.csv, one per edge
+    one_file, ///< profile-NNNN.csv with an edge column
+    none
+  };
+
+  /// What the network adds to the method of every scene
+  /// (dg::DiscretizationParameters): its numerical flux among the scalar
+  /// ones, the mesh of the edges, the integrator and what a snapshot writes.
+  struct NetworkOptions
+  {
+    NumericalFlux flux = NumericalFlux::upwind;
+    /// 2^l at grid level l: an edge of length L gets round(L * this) cells
+    double        cells_per_unit_length = 256;
+    Integrator    integrator            = Integrator::automatic;
+    Profiles      profiles              = Profiles::per_edge;
+    /// whether solution-NNNN.vtu are written
+    bool          write_vtu = true;
+  };
+
+  /// The cells of every edge of graph at cells per unit length (at least one).
+  std::vector<unsigned int>
+  edge_cells(const Graph &graph, double cells_per_unit_length);
+
+  /// Bytes of one snapshot of the network (the estimate of
+  /// require_reasonable_snapshot_count()), without building it.
+  double
+  snapshot_bytes(unsigned long n_cells, const dg::DiscretizationParameters &method,
+                 const NetworkOptions &options);
+
+  /// Data of one edge: initial data u(x) and, for a Dirichlet far end, g(t)
+  /// (evaluated at the far end point). initial_breakpoints: where the
+  /// initial data jump (cell averages are integrated piecewise there).
+  struct EdgeData
+  {
+    std::shared_ptr<Function<1>> initial;
+    std::shared_ptr<Function<1>> far_end;
+    std::vector<double>          initial_breakpoints;
+  };
+
+  /// Error norms over all edges and the vertex cell.
+  struct NetworkErrors
+  {
+    double l1 = 0, l2 = 0, linf = 0;
+    double l1_edges = 0, l1_vertex = 0;
+    std::vector<double> l1_per_edge;
+  };
+
+  /**
+   * The network as one discretisation and the Evolution the TimeLoop drives:
+   * the cells of all edges of a rank in one line engine (EdgeLines), whose
+   * vertex faces take the current vertex value as their Dirichlet state; the
+   * Junction couples them. apply_stage() is a Runge-Kutta stage of the whole network
+   * (edges and vertex), so dg::SSPRK3<NetworkState> and
+   * dg::ForwardEuler<NetworkState> advance it.
+   *
+   * On several MPI ranks each rank discretises its own edges (EdgePartition)
+   * and updates the vertices they meet; the traces at vertices shared with
+   * other ranks are exchanged once per stage. The solution is the same bit
+   * for bit on any number of ranks. Sums over the network (mass, errors,
+   * total variation) and the time step are reduced over the ranks; output
+   * and checkpoints are gathered on rank 0 and do not depend on the number
+   * of ranks.
+   */
+  class NetworkProblem : public Evolution
+  {
+  public:
+    /// The vertices' widths and initial values are the graph's.
+    NetworkProblem(const Graph &graph, const dg::DiscretizationParameters &method,
+                   const NetworkOptions &options, std::vector<EdgeData> data,
+                   const ExactSolution *exact = nullptr, const std::string &scene = "network");
+    ~NetworkProblem() override;
+
+    // ------------------------------------------------------------ Evolution
+    /// edges, vertex ends, cells and DoFs of all edges (+1: the vertex value)
+    EvolutionInfo
+    info() const override;
+    /// Project the initial data (exact cell averages at degree 0), limit,
+    /// and set every vertex: the given value, or the discrete stationary one
+    /// for the initial edge traces.
+    double
+    initialize() override;
+    /// every mode of every edge and the vertex value finite
+    void
+    check_initial_state(double t) override;
+    /// The CFL step of the current state: cfl * min h / max |f'|, the
+    /// vertex values included (condition (4.7) for cfl <= 1/2).
+    double
+    time_step(double t) override;
+    /// One step of the integrator (limiter after every stage); throws
+    /// Inadmissible when a stage is not finite (or, at degree 0, leaves the
+    /// range of the data).
+    void
+    advance(double t, double dt) override;
+    /// the mass balance and the largest total variation so far
+    void
+    end_of_step(double t, double dt, unsigned long step) override;
+    void
+    store(Slot slot) override;
+    void
+    restore(Slot slot) override;
+    /// solution-NNNN.vtu (the edges and vertices in the plane) and
+    /// profile-NNNN-edge-K.csv
+    SnapshotFiles
+    write_snapshot(const std::string &directory, unsigned int index, double t) override;
+    /// mass, mass balance, inflow, (first) vertex value, TV, largest
+    /// Rankine-Hugoniot residual (and the errors against an exact solution)
+    std::vector<std::string>
+    timeseries_names() const override;
+    std::string
+    timeseries_comment() const override;
+    std::vector<double>
+    timeseries_values(double t) override;
+    /// the modes of every edge, the vertex values, the far-end inflow and
+    /// the running diagnostics
+    void
+    save(ByteWriter &w) override;
+    void
+    load(ByteReader &r) override;
+    /// summary.json: mass balance, vertex and TV diagnostics, errors
+    void
+    finish(double t, RunResult &result, bool write_files) override;
+    void
+    set_phases(StepPhases *p) override
+    {
+      phases = p;
+    }
+
+    // ------------------------------------------------------------ the method
+    /// One Runge-Kutta stage (dg::StageUpdate; dst may be src or s.old):
+    /// the coupling and every edge's operator and update.
+    void
+    apply_stage(double t, const NetworkState &src, NetworkState &dst,
+                const dg::StageUpdate<NetworkState> &s) const;
+
+    /// of the whole network (all ranks)
+    unsigned long n_dofs() const;
+    unsigned long n_cells() const;
+    unsigned int  n_stages() const;
+    double        min_cell_size() const { return h_min; }
+    const Graph  &graph() const { return net; }
+    const Junction &junction(unsigned int v = 0) const { return junctions[v]; }
+    const EdgePartition &partition() const { return *ranks; }
+    /// u_0 of vertex v on a rank that owns one of its edges (every vertex on
+    /// one rank); vertex_values() has all of them on every rank.
+    double        vertex_value(unsigned int v = 0) const { return u.vertices[v]; }
+    /// Collective: the value of every vertex, on every rank.
+    std::vector<double> vertex_values() const;
+
+    /// Collective (as all sums and norms below): total mass, the integrals
+    /// over the edges + dx_0 u_0 of every vertex.
+    double mass() const;
+    /// int_0^t (inflow - outflow at the far ends) dt, as the integrator saw it.
+    double boundary_inflow() const { return ranks->sum(inflow); }
+    /// L1 norm of the cell averages and the vertices (the scale of the drift).
+    double l1_norm() const;
+    /// Traces of the edges at the ends of vertex v (Junction::ends() order;
+    /// valid until the next call). At a vertex shared with other ranks they
+    /// are those of the last exchange_traces().
+    const std::vector<double> &vertex_traces(const NetworkState &state, unsigned int v) const;
+    /// Collective: share the traces of state at the vertices whose edges lie
+    /// on several ranks (nothing to do on one rank).
+    void exchange_traces(const NetworkState &state) const;
+    /// sum_in F - sum_out F for the current state at the vertex where it is
+    /// largest in magnitude (0 without vertices).
+    double rh_residual() const;
+    /// (4.4): TV of the cell averages along every edge plus the jumps
+    /// between each vertex and its neighbouring cells.
+    double total_variation() const;
+    NetworkErrors errors(const ExactSolution &exact, double t) const;
+    /// ||u - v||_L1 over edges and vertices (same mesh).
+    double l1_distance(const NetworkProblem &other) const;
+    const NetworkState &state() const { return u; }
+
+    /// The mass balance of a run: R = (mass(t) - mass(0) - far-end inflow) /
+    /// ||u(0)||_L1 after every step; its largest |R| (the drift) and its
+    /// largest change in one step (the conservation error of a step).
+    struct MassBalance
+    {
+      double mass0 = 0, scale = 1, last = 0, max_residual = 0, max_step = 0;
+    };
+
+    const MassBalance &
+    mass_balance() const
+    {
+      return balance;
+    }
+
+    /// The solution at equally spaced points of every cell (both ends
+    /// included): per edge the pairs (x, u), of this rank's edges (the
+    /// others empty); gathered_sample() has all edges on rank 0.
+    std::vector<std::vector<std::pair<double, double>>>
+    sample(unsigned int points_per_cell) const;
+    std::vector<std::vector<std::pair<double, double>>>
+    gathered_sample(unsigned int points_per_cell) const;
+
+  private:
+    /// the outer states of the edge ends at time: the values vertex_u0 of
+    /// their vertices, the far-end data
+    void   set_end_states(double time) const;
+    /// the local number of edge k in EdgeLines (this rank's edges)
+    unsigned int local(const unsigned int k) const { return local_edge[k]; }
+    /// the trace of edge k at x = 0 (at_end false) or x = L (at_end true)
+    double trace(unsigned int edge, bool at_end, const NetworkState &s) const;
+    /// the vertex rates and the far-end inflow of the stage at src (the
+    /// coupling part of a stage; sets the vertex values the edges see)
+    const std::vector<double> &couple(double t, const NetworkState &src) const;
+    /// the value the edges see at vertex v: u_0, or the balance of the
+    /// traces for a vertex without volume
+    double vertex_state(unsigned int v, const NetworkState &s, double t) const;
+    double far_end_inflow(double time, const NetworkState &s) const;
+    void   post_stage(NetworkState &s, double stage_time);
+    /// Inadmissible unless s is finite (and, at degree 0, in the range of
+    /// the step).
+    void   post_stage_checks(const NetworkState &s, double stage_time);
+    /// this rank's part of post_stage_checks (principle: check the maximum
+    /// principle against bounds)
+    void   local_checks(const NetworkState &s, double stage_time, bool principle);
+    /// Degree 0: the range [min, max] of the cell averages, the vertex values
+    /// and the free ends' Dirichlet data of the step from t to t + dt.
+    std::pair<double, double> range_of_step(double t, double dt) const;
+    /// Degree 0: Inadmissible unless every cell average of s lies in the
+    /// step's range (widened by the stage's vertex values).
+    void check_maximum_principle(const NetworkState &s, double stage_time);
+    /// where: an edge k >= 0 at x, or vertex -1 - k
+    Inadmissible failure(double time, int edge, double x, double value,
+                         const std::string &reason) const;
+    double balance_residual() const;
+    /// Collective: values[k] of every edge k on rank 0 (each rank fills
+    /// those of its edges).
+    void gather_edge_values(std::vector<std::vector<double>> &values) const;
+    /// this rank's part of mass()
+    double local_mass() const;
+    /// this rank's mass and total variation in one pass
+    std::array<double, 2> local_sums() const;
+    /// Junction::balance at vertex v; in parallel a failure is held (NaN is
+    /// returned) until the stage's collective check reports it on every rank.
+    double balance_at(unsigned int v, const std::vector<double> &traces, double time) const;
+    using Samples = std::vector<std::vector<std::pair<double, double>>>;
+    /// sample points per cell of the VTU (at least 2) and of the profiles
+    unsigned int vtu_points() const
+    {
+      return method.profile_points > 0 ? std::max(2u, method.profile_points) :
+                                         std::max(2u, method.degree + 1);
+    }
+    unsigned int profile_points() const
+    {
+      return method.profile_points > 0 ? method.profile_points :
+                                         std::max(2u, method.degree + 1);
+    }
+    /// rank 0: the files of a snapshot from the gathered samples and vertex
+    /// values (write_vtu releases the samples of each edge once they are in
+    /// its patch)
+    void   write_profiles(const std::string &directory, unsigned int index, double t,
+                          const Samples &profile, const std::vector<double> &vertices) const;
+    std::string write_vtu(const std::string &directory, unsigned int index, double t,
+                          Samples samples, const std::vector<double> &vertices) const;
+    /// What a checkpoint holds (the modes of every edge, the vertex values,
+    /// the far-end inflow and the diagnostics), written and read alike.
+    template <typename Archive>
+    void
+    state_io(Archive &ar, std::vector<double> &vertices, std::vector<std::vector<double>> &modes,
+             double &total_inflow);
+
+    Graph                       net;
+    dg::DiscretizationParameters method;
+    NetworkOptions              options;
+    std::vector<EdgeData> data;
+    const ExactSolution  *exact;
+    std::string           scene;
+    std::unique_ptr<EdgePartition>                   ranks;
+    /// cells and cell size of every edge
+    std::vector<unsigned int>                        edge_cells;
+    std::vector<double>                              edge_h;
+    /// the cells of this rank's edges; the local number of every edge (-1:
+    /// on another rank)
+    std::unique_ptr<EdgeLines>                       lines;
+    std::vector<int>                                 local_edge;
+    /// the traces exchanged at the vertices shared by several ranks
+    mutable std::vector<double>                      exchanged;
+    /// a vertex balance that failed on this rank (parallel runs)
+    mutable std::optional<std::string>               pending_error;
+    mutable std::vector<double>                      trace_buffer;
+    /// the end faces of this rank's edges (2 local edge + side) at each
+    /// vertex, and the (edge, side) of the far ends with Dirichlet data
+    std::vector<std::pair<unsigned int, unsigned int>> vertex_faces, data_faces;
+    /// the ends of each vertex (CSR: those of v are first[v] .. first[v +
+    /// 1] - 1, in Junction::ends() order): the array index of the cell
+    /// whose trace it takes (source >= 0), or -1 - its slot in exchanged
+    /// (a vertex shared with other ranks); at_end: the trace at x = L;
+    /// edge: the end's edge
+    struct VertexEnds
+    {
+      std::vector<std::size_t>   first;
+      std::vector<long>          source;
+      std::vector<unsigned char> at_end;
+      std::vector<unsigned int>  edge;
+    } vertex_ends;
+    std::vector<Junction>                            junctions;
+    /// the value the edges see at each vertex in the current stage
+    mutable std::vector<double>                      vertex_u0;
+    NetworkState               u, last_good, benchmark_start;
+    dg::SSPRK3<NetworkState>   rk3;
+    /// inflow: this rank's far ends
+    double                     t = 0., inflow = 0., h_min = 0.;
+    MassBalance                balance;
+    double                     tv0 = 0, u00 = 0, tv_max = 0;
+    /// the range of the current step (degree 0's maximum principle)
+    std::pair<double, double>  bounds{-INFINITY, INFINITY};
+    /// far-end inflow rate of each stage in the current step
+    mutable std::vector<double> stage_inflow;
+    /// the vertex rates of the current stage
+    mutable std::vector<double> rates;
+    StepPhases                 *phases = nullptr;
+  };
+
+  /// A single run with output (solution.pvd with the network drawn in the
+  /// plane, profile-NNNN-edge-K.csv, timeseries.csv, summary.json).
+  RunResult
+  run_network(const Graph &graph, const std::vector<EdgeData> &data,
+              const dg::DiscretizationParameters &method, const NetworkOptions &options,
+              const ExactSolution *exact,
+              const RunParameters &params, bool write_files,
+              const std::string &scene = "network");
+
+  /// The study of Convergence/degrees x Convergence/cells (cells per unit
+  /// length): L1 error over edges and vertex (and per edge), EOC, steps, CPU
+  /// time, in convergence.csv (and a Table-1-like table on stdout); the EOC
+  /// of the two finest meshes per degree in convergence-rates.csv. cfl[i] is
+  /// the CFL number of degree i of the list.
+  void
+  run_network_convergence(const Graph &graph, const std::vector<EdgeData> &data,
+                          const dg::DiscretizationParameters &method,
+                          const NetworkOptions &options, const ExactSolution &exact,
+                          const RunParameters &params, const std::vector<double> &cfl);
+} // namespace granular_dg::network

@@ -1,0 +1,4 @@
+#include <granular_dg/dg/instantiate.h>
+#include <granular_dg/equations/column/system.h>
+
+GRANULAR_DG_INSTANTIATE(1, granular_dg::column::System)

@@ -1,4 +1,0 @@
-#include <granular_dg/dg/instantiate.h>
-#include <granular_dg/equations/hopper_stress/system.h>
-
-GRANULAR_DG_INSTANTIATE(1, granular_dg::hopper::System)

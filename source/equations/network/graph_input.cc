@@ -1,0 +1,597 @@
+/**
+ * The network's graph from the prm (Vertex N, Edge N) or from CSV files, and
+ * its validation (graph_input.h).
+ */
+
+#include <deal.II/base/function.h>
+
+#include <granular_dg/base/checkpoint.h>
+#include <granular_dg/base/errors.h>
+#include <granular_dg/base/input_path.h>
+#include <granular_dg/base/parameters.h>
+#include <granular_dg/equations/network/graph_input.h>
+
+#include <algorithm>
+#include <cmath>
+#include <fstream>
+#include <map>
+#include <sstream>
+
+namespace granular_dg::network
+{
+  namespace
+  {
+    const EnumNames<FarEnd>  far_end_names({{FarEnd::dirichlet, "dirichlet"},
+                                            {FarEnd::outflow, "outflow"}});
+    enum class EdgeKind
+    {
+      none,
+      in,
+      out,
+      loop
+    };
+    const EnumNames<EdgeKind> direction_names({{EdgeKind::none, "none"},
+                                               {EdgeKind::in, "in"},
+                                               {EdgeKind::out, "out"},
+                                               {EdgeKind::loop, "loop"}});
+
+    std::string
+    section(const std::string &kind, const unsigned int i)
+    {
+      return kind + " " + std::to_string(i + 1);
+    }
+
+    std::string
+    trim(const std::string &s)
+    {
+      const auto a = s.find_first_not_of(" \t\r");
+      const auto b = s.find_last_not_of(" \t\r");
+      return a == std::string::npos ? "" : s.substr(a, b - a + 1);
+    }
+
+    /// s as a double, if all of it is one in decimal notation (std::stod's
+    /// hexadecimal numbers such as 0x1 are not numbers here)
+    std::optional<double>
+    as_number(const std::string &s)
+    {
+      if (s.find_first_of("xX") != std::string::npos)
+        return {};
+      try
+        {
+          std::size_t end = 0;
+          const double x  = std::stod(s, &end);
+          if (end == s.size())
+            return x;
+        }
+      catch (const std::exception &)
+        {}
+      return {};
+    }
+
+    /// A constant for a number, else a parsed expression (in x, or in t).
+    std::shared_ptr<Function<1>>
+    make_data(const std::string &text, const std::string &where, const bool time_dependent)
+    {
+      if (const auto x = as_number(text))
+        {
+          require(std::isfinite(*x), where, text, "a finite number or an expression");
+          return std::make_shared<Functions::ConstantFunction<1>>(*x);
+        }
+      return make_function<1>({text}, {where}, time_dependent);
+    }
+
+    /// "stationary" (none) or a constant expression
+    std::optional<double>
+    vertex_value(const std::string &text, const std::string &parameter)
+    {
+      if (text == "stationary")
+        return {};
+      const std::string allowed = "'stationary' or a constant expression, e.g. sqrt(2/3)";
+      double            v       = 0;
+      try
+        {
+          const auto f = make_function<1>({text}, {parameter}, false);
+          v            = f->value(Point<1>(0.3));
+          require(v == f->value(Point<1>(0.7)), parameter, text, allowed);
+        }
+      catch (const InputError &)
+        {
+          require(false, parameter, text, allowed);
+        }
+      require(std::isfinite(v), parameter, text, "a finite value");
+      return v;
+    }
+
+    /// "x, y"
+    Point<2>
+    position(const std::string &text, const std::string &parameter)
+    {
+      std::vector<double> xy;
+      try
+        {
+          xy = parse_doubles(text, parameter);
+        }
+      catch (const InputError &)
+        {}
+      require(xy.size() == 2 && std::isfinite(xy[0]) && std::isfinite(xy[1]), parameter, text,
+              "two finite numbers 'x, y' (or empty: the program places the vertex)");
+      return Point<2>(xy[0], xy[1]);
+    }
+
+    /// the flux law with its parameter (a of linear, alpha of traffic)
+    FluxFunction
+    make_flux(const std::string &law, const double parameter, const std::string &where,
+              const std::string &parameter_name)
+    {
+      FluxFunction f;
+      f.law = flux_law_names.parse(where + "flux", law);
+      if (f.law == FluxLaw::linear)
+        f.speed = parameter;
+      if (f.law == FluxLaw::traffic)
+        {
+          f.alpha = parameter;
+          require(parameter > 0, where + parameter_name, parameter,
+                  "must be > 0 (the capacity scale of the traffic flux)");
+        }
+      require(std::isfinite(parameter), where + parameter_name, parameter, "a finite number");
+      return f;
+    }
+
+    /// A vertex reference "free", "loop" (to only: the from vertex) or a
+    /// number 1, 2, ... (1-based); returns the index or free_end.
+    unsigned int
+    vertex_reference(const std::string &text, const std::string &parameter, const bool to,
+                     const unsigned int from)
+    {
+      if (text == "free")
+        return free_end;
+      if (to && text == "loop")
+        {
+          require(from != free_end, parameter, text, "'loop' needs a from vertex");
+          return from;
+        }
+      const auto n = as_number(text);
+      require(n && *n >= 1 && *n == std::floor(*n) && *n < 1e9, parameter, text,
+              std::string("free, ") + (to ? "loop, " : "") + "or a vertex number 1, 2, ...");
+      const unsigned int v = static_cast<unsigned int>(*n) - 1;
+      require(!to || v != from, parameter, text,
+              "a vertex other than from: an edge from a vertex to itself is a roundabout; "
+              "write to = loop if one is meant");
+      return v;
+    }
+
+    std::string
+    join(const std::vector<std::string> &names)
+    {
+      std::string s;
+      for (const auto &n : names)
+        s += (s.empty() ? "" : ",") + n;
+      return s;
+    }
+
+    /// The rows of a CSV file: (line number, fields), after the header,
+    /// whose names must be among `allowed` and include the first n_required.
+    struct CsvTable
+    {
+      std::map<std::string, unsigned int>                          column;
+      std::vector<std::pair<unsigned int, std::vector<std::string>>> rows;
+      /// FNV-1a of the file's bytes (what a checkpoint compares)
+      std::uint64_t                                                content_hash = 0;
+
+      /// the field of a column ("" if the file has no such column or the row ends before)
+      std::string
+      get(const std::vector<std::string> &row, const std::string &name) const
+      {
+        const auto c = column.find(name);
+        return c == column.end() || c->second >= row.size() ? "" : row[c->second];
+      }
+    };
+
+    CsvTable
+    read_csv(const std::string &parameter, const std::string &file,
+             const std::vector<std::string> &allowed, const unsigned int n_required)
+    {
+      const std::string path = resolve_input_path(file);
+      std::ifstream     in(path);
+      require(static_cast<bool>(in), parameter, file,
+              "a readable CSV file (relative paths are relative to the parameter file: " + path +
+                ")");
+      std::ostringstream content;
+      content << in.rdbuf();
+      CsvTable table;
+      table.content_hash = fnv1a(content.str());
+      std::istringstream lines(content.str());
+      std::string        line;
+      unsigned int       number = 0;
+      while (std::getline(lines, line))
+        {
+          ++number;
+          // a spreadsheet's "CSV UTF-8" starts with a byte-order mark (and
+          // trim() takes the \r of CRLF line ends)
+          if (number == 1 && line.rfind("\xEF\xBB\xBF", 0) == 0)
+            line.erase(0, 3);
+          if (trim(line).empty() || trim(line)[0] == '#')
+            continue;
+          std::vector<std::string> fields;
+          std::stringstream        split(line);
+          for (std::string f; std::getline(split, f, ',');)
+            fields.push_back(trim(f));
+          if (table.column.empty())
+            {
+              for (unsigned int c = 0; c < fields.size(); ++c)
+                {
+                  require(std::find(allowed.begin(), allowed.end(), fields[c]) != allowed.end() &&
+                            !table.column.count(fields[c]),
+                          parameter, file,
+                          "a header line naming each column once, from: " +
+                            join(allowed) + " (line " + std::to_string(number) +
+                            " has '" + fields[c] + "')");
+                  table.column[fields[c]] = c;
+                }
+              for (unsigned int c = 0; c < n_required; ++c)
+                require(table.column.count(allowed[c]) > 0, parameter, file,
+                        "a header line with the column '" + allowed[c] + "'");
+              continue;
+            }
+          require(fields.size() <= table.column.size(), parameter, file,
+                  "at most " + std::to_string(table.column.size()) + " fields per line (line " +
+                    std::to_string(number) + " has " + std::to_string(fields.size()) +
+                    "; expressions must not contain commas)");
+          table.rows.emplace_back(number, fields);
+        }
+      require(!table.rows.empty(), parameter, file, "a header line and at least one row");
+      return table;
+    }
+
+    /// a required number of a CSV row
+    double
+    csv_number(const std::string &text, const std::string &where, const std::string &name)
+    {
+      const auto x = as_number(text);
+      require(x && std::isfinite(*x), where + name, text, "a finite number");
+      return *x;
+    }
+  } // namespace
+
+  void
+  GraphInput::declare(ParameterHandler &prm)
+  {
+    prm.declare_entry("graph file", "", Patterns::Anything(),
+                      "A CSV edge list for large networks (instead of Edge N sections), "
+                      "relative to this parameter file: a header line, then one edge per "
+                      "line: id,from,to,length,flux[,parameter[,initial[,far_end[,far_end_data]]]] "
+                      "(from/to: a vertex id or free; to may be loop; parameter: a of linear, "
+                      "alpha of traffic; initial: a number or an expression in x without commas; "
+                      "far_end: dirichlet or outflow; far_end_data: a number or an expression "
+                      "in t). Lines starting with # are comments.");
+    prm.declare_entry("vertex file", "", Patterns::Anything(),
+                      "With a graph file: a CSV vertex list, id,x,y[,width_factor[,initial_value]] "
+                      "(positions for the drawing; width factor and initial value as in "
+                      "Vertex N). Without it the vertices are those the edges name.");
+    for (unsigned int i = 0; i < max_vertex_sections; ++i)
+      {
+        prm.enter_subsection(section("Vertex", i));
+        prm.declare_entry("width factor", "default", Patterns::Anything(),
+                          "Width of this vertex's control volume in units of dx_0 = N dx/2 "
+                          "(0: no volume); default: Network/vertex width factor.");
+        prm.declare_entry("initial value", "default", Patterns::Anything(),
+                          "u_0 at t = 0: stationary, a constant expression, or default "
+                          "(Network/vertex initial value).");
+        prm.declare_entry("position", "", Patterns::Anything(),
+                          "'x, y' where the vertex is drawn (give all vertices one, or none).");
+        prm.leave_subsection();
+      }
+    for (unsigned int i = 0; i < max_edge_sections; ++i)
+      {
+        prm.enter_subsection(section("Edge", i));
+        prm.declare_entry("direction", "none", direction_names.pattern(),
+                          "Shorthand for a star graph: how the edge meets Vertex 1: in (it "
+                          "ends there, x = length), out (it starts there, x = 0), loop (a "
+                          "roundabout: both ends there) or none (use from/to, or no such edge).");
+        prm.declare_entry("from", "none", Patterns::Anything(),
+                          "The vertex at x = 0: a number N (Vertex N), free (a free end: far "
+                          "end data or outflow), or none (no such edge, or direction is used).");
+        prm.declare_entry("to", "none", Patterns::Anything(),
+                          "The vertex at x = length: N, free, loop (the from vertex: a "
+                          "roundabout) or none.");
+        prm.declare_entry("length", "1", Patterns::Double(),
+                          "Length L of the edge; its coordinate x runs over [0, L] in the "
+                          "direction of the edge. Must be > 0.");
+        prm.declare_entry("flux", "burgers", flux_law_names.pattern(),
+                          "Flux: linear (f = a u), burgers (f = u^2/2) or traffic "
+                          "(f = alpha f0(u/alpha), f0(u) = 4u(1-u)).");
+        prm.declare_entry("advection speed", "1", Patterns::Double(), "a of the linear flux.");
+        prm.declare_entry("alpha", "1", Patterns::Double(),
+                          "alpha of the traffic flux (capacity alpha at u = alpha/2). "
+                          "Must be > 0.");
+        prm.declare_entry("initial data", "0", Patterns::Anything(),
+                          "u(x, 0) as an expression in x (edge coordinate) and pi, e.g. "
+                          "if(x < 0.5, 2, sqrt(2)).");
+        prm.declare_entry("far end", "outflow", far_end_names.pattern(),
+                          "Condition at a free end: dirichlet (exterior state = far end data: "
+                          "inflow) or outflow (exterior = interior state, the paper's zero "
+                          "Neumann).");
+        prm.declare_entry("far end data", "0", Patterns::Anything(),
+                          "Dirichlet state at a free end, an expression in t and pi.");
+        prm.leave_subsection();
+      }
+  }
+
+  void
+  GraphInput::parse(ParameterHandler &prm)
+  {
+    const std::string edge_file   = prm.get("graph file");
+    const std::string vertex_file = prm.get("vertex file");
+    const double      width       = prm.get_double("vertex width factor");
+    const std::string value_text  = prm.get("vertex initial value");
+    const auto        value = vertex_value(value_text, "Network/vertex initial value");
+    require(vertex_file.empty() || !edge_file.empty(), "Network/vertex file", vertex_file,
+            "only with a Network/graph file (Vertex N sections go with Edge N sections)");
+    if (edge_file.empty())
+      parse_sections(prm);
+    else
+      {
+        // the file replaces the sections: they must be unused
+        for (unsigned int i = 0; i < max_edge_sections; ++i)
+          {
+            prm.enter_subsection(section("Edge", i));
+            const bool used = prm.get("direction") != "none" || prm.get("from") != "none" ||
+                              prm.get("to") != "none";
+            prm.leave_subsection();
+            require(!used, "Network/" + section("Edge", i) + "/from", "(set)",
+                    "no Edge N sections with a Network/graph file: give the edges in one place");
+          }
+        for (unsigned int i = 0; i < max_vertex_sections; ++i)
+          {
+            prm.enter_subsection(section("Vertex", i));
+            for (const auto &[entry, unset] : {std::pair<std::string, std::string>{"width factor", "default"},
+                                               {"initial value", "default"},
+                                               {"position", ""}})
+              require(prm.get(entry) == unset, "Network/" + section("Vertex", i) + "/" + entry,
+                      prm.get(entry),
+                      "unset with a Network/graph file: give the vertices' data in "
+                      "Network/vertex file");
+            prm.leave_subsection();
+          }
+        read_edge_file("Network/graph file", edge_file);
+        if (!vertex_file.empty())
+          read_vertex_file("Network/vertex file", vertex_file,
+                           "Network/graph file '" + edge_file + "'");
+      }
+    // the Network-wide defaults of the vertices
+    value_given.resize(graph.vertices.size(), false);
+    for (unsigned int v = 0; v < graph.vertices.size(); ++v)
+      {
+        if (std::isnan(graph.vertices[v].width_factor))
+          graph.vertices[v].width_factor = width;
+        if (!value_given[v])
+          graph.vertices[v].initial_value = value;
+      }
+    graph.validate(edge_file.empty() ? std::string("Network") :
+                                       "Network/graph file '" + edge_file + "'");
+  }
+
+  void
+  GraphInput::add_edge(Edge e, const std::string &at, const std::string &initial,
+                       const std::string &far_end_data, const std::string &initial_name,
+                       const std::string &far_end_name)
+  {
+    EdgeData d;
+    d.initial = make_data(initial, at + initial_name, false);
+    if (e.far_end == FarEnd::dirichlet && (e.from == free_end || e.to == free_end))
+      d.far_end = make_data(far_end_data, at + far_end_name, true);
+    graph.edges.push_back(std::move(e));
+    data.push_back(d);
+    initial_text.push_back(initial);
+    where.push_back(at);
+  }
+
+  void
+  GraphInput::read_edge_file(const std::string &parameter, const std::string &file)
+  {
+    const CsvTable table = read_csv(parameter, file,
+                                    {"id", "from", "to", "length", "flux", "parameter",
+                                     "initial", "far_end", "far_end_data"},
+                                    5);
+    graph.files.push_back({parameter, file, table.content_hash});
+    // vertex ids as written -> indices, in increasing order of the ids
+    std::map<long, unsigned int> index;
+    auto vertex_id = [&](const std::string &text, const std::string &where) -> long {
+      const auto x = as_number(text);
+      require(x && *x == std::floor(*x) && std::abs(*x) < 1e15, where, text,
+              "free, or an integer id");
+      return static_cast<long>(*x);
+    };
+    for (const auto &[line, row] : table.rows)
+      for (const char *end : {"from", "to"})
+        {
+          const std::string v = table.get(row, end);
+          if (v != "free" && v != "loop")
+            index[vertex_id(v, parameter + " '" + file + "', line " + std::to_string(line) +
+                                 ": " + end)] = 0;
+        }
+    unsigned int n = 0;
+    for (auto &[id, i] : index)
+      {
+        i = n++;
+        Vertex v;
+        v.label        = "Vertex " + std::to_string(id);
+        v.width_factor = NAN;
+        graph.vertices.push_back(v);
+        vertex_ids.push_back(id);
+      }
+    std::map<long, unsigned int> edge_line;
+    for (const auto &[line, row] : table.rows)
+      {
+        const std::string at = parameter + " '" + file + "', line " + std::to_string(line) + ": ";
+        const long        id = vertex_id(table.get(row, "id"), at + "id");
+        const auto [first, unique] = edge_line.emplace(id, line);
+        require(unique, at + "id", id,
+                "a unique edge id (line " + std::to_string(first->second) + " has it too)");
+        Edge e;
+        e.label = "Edge " + std::to_string(id);
+        auto reference = [&](const char *end, const unsigned int from) {
+          const std::string v = table.get(row, end);
+          if (v == "free")
+            return free_end;
+          if (v == "loop" && std::string(end) == "to" && from != free_end)
+            return from;
+          require(v != "loop", at + end, v, "loop only in 'to', after a from vertex");
+          return index.at(vertex_id(v, at + end));
+        };
+        e.from = reference("from", free_end);
+        e.to   = reference("to", e.from);
+        require(e.from == free_end || e.to != e.from || table.get(row, "to") == "loop",
+                at + "to", table.get(row, "to"),
+                "a vertex other than from: write loop for a roundabout");
+        e.length = csv_number(table.get(row, "length"), at, "length");
+        const std::string law = table.get(row, "flux"), p = table.get(row, "parameter");
+        e.flux = make_flux(law, p.empty() ? 1. : csv_number(p, at, "parameter"), at, "parameter");
+        const std::string far = table.get(row, "far_end");
+        e.far_end = far.empty() ? FarEnd::outflow : far_end_names.parse(at + "far_end", far);
+        const std::string initial = table.get(row, "initial");
+        const std::string g       = table.get(row, "far_end_data");
+        add_edge(e, at, initial.empty() ? "0" : initial, g.empty() ? "0" : g, "initial",
+                 "far_end_data");
+      }
+  }
+
+  void
+  GraphInput::read_vertex_file(const std::string &parameter, const std::string &file,
+                               const std::string &edges)
+  {
+    const CsvTable table =
+      read_csv(parameter, file, {"id", "x", "y", "width_factor", "initial_value"}, 3);
+    graph.files.push_back({parameter, file, table.content_hash});
+    std::map<long, unsigned int> index;
+    for (unsigned int i = 0; i < vertex_ids.size(); ++i)
+      index[vertex_ids[i]] = i;
+    std::map<long, unsigned int> seen;
+    value_given.assign(graph.vertices.size(), false);
+    for (const auto &[line, row] : table.rows)
+      {
+        const std::string at = parameter + " '" + file + "', line " + std::to_string(line) + ": ";
+        const std::string text = table.get(row, "id");
+        const auto        x    = as_number(text);
+        require(x && *x == std::floor(*x) && std::abs(*x) < 1e15, at + "id", text,
+                "an integer vertex id");
+        const long id = static_cast<long>(*x);
+        const auto [first, unique] = seen.emplace(id, line);
+        require(unique, at + "id", id,
+                "a unique vertex id (line " + std::to_string(first->second) + " has it too)");
+        const auto it = index.find(id);
+        require(it != index.end(), at + "id", id,
+                "a vertex that an edge of " + edges + " names (Vertex " + std::to_string(id) +
+                  " has no edges; every vertex needs at least one)");
+        Vertex &v  = graph.vertices[it->second];
+        v.position = Point<2>(csv_number(table.get(row, "x"), at, "x"),
+                              csv_number(table.get(row, "y"), at, "y"));
+        const std::string w = table.get(row, "width_factor"), u0 = table.get(row, "initial_value");
+        if (!w.empty())
+          {
+            v.width_factor = csv_number(w, at, "width_factor");
+            require(v.width_factor >= 0, at + "width_factor", w, "a number >= 0");
+          }
+        if (!u0.empty())
+          {
+            v.initial_value         = vertex_value(u0, at + "initial_value");
+            value_given[it->second] = true;
+          }
+      }
+    // every vertex an edge names must be listed
+    for (unsigned int k = 0; k < graph.edges.size(); ++k)
+      for (const unsigned int v : {graph.edges[k].from, graph.edges[k].to})
+        if (v != free_end && !seen.count(vertex_ids[v]))
+          throw InputError(where[k] + graph.edges[k].label + " names " + graph.vertices[v].label +
+                           ", which " + parameter + " '" + file + "' does not list");
+  }
+
+  void
+  GraphInput::parse_sections(ParameterHandler &prm)
+  {
+    unsigned int n_vertices = 0;
+    for (unsigned int i = 0; i < max_edge_sections; ++i)
+      {
+        const std::string at = "Network/" + section("Edge", i) + "/";
+        prm.enter_subsection(section("Edge", i));
+        const EdgeKind kind = direction_names.parse(at + "direction", prm.get("direction"));
+        const std::string from = prm.get("from"), to = prm.get("to");
+        if (kind == EdgeKind::none && from == "none" && to == "none")
+          {
+            prm.leave_subsection();
+            continue;
+          }
+        Edge e;
+        e.label = section("Edge", i);
+        if (kind != EdgeKind::none)
+          {
+            require(from == "none" && to == "none", at + "direction", prm.get("direction"),
+                    "none when from/to are given (direction is the star graph's shorthand "
+                    "for an edge at Vertex 1)");
+            e.meet(kind == EdgeKind::in ? Direction::in :
+                   kind == EdgeKind::out ? Direction::out : Direction::loop);
+          }
+        else
+          {
+            require(from != "none", at + "from", from, "free or a vertex number, since to is set");
+            require(to != "none", at + "to", to, "free, loop or a vertex number, since from is set");
+            e.from = vertex_reference(from, at + "from", false, free_end);
+            e.to   = vertex_reference(to, at + "to", true, e.from);
+          }
+        for (const auto &[v, end] : {std::pair(e.from, "from"), std::pair(e.to, "to")})
+          if (v != free_end)
+            {
+              require(v < max_vertex_sections, at + end, v + 1,
+                      "a vertex number up to " + std::to_string(max_vertex_sections) +
+                        " (Vertex N sections; use a Network/graph file for larger networks)");
+              n_vertices = std::max(n_vertices, v + 1);
+            }
+        const std::string length = prm.get("length");
+        e.length                 = prm.get_double("length");
+        require(e.length > 0, at + "length", length, "must be > 0");
+        const bool linear = prm.get("flux") == "linear";
+        e.flux   = make_flux(prm.get("flux"), prm.get_double(linear ? "advection speed" : "alpha"),
+                           at, linear ? "advection speed" : "alpha");
+        e.far_end = far_end_names.parse(at + "far end", prm.get("far end"));
+        const std::string initial = prm.get("initial data"), far = prm.get("far end data");
+        prm.leave_subsection();
+        add_edge(e, at, initial, far, "initial data", "far end data");
+      }
+    require(!graph.edges.empty(), "Network/Edge 1/direction", "none",
+            "in, out or loop (or from/to) for at least one Network/Edge N");
+
+    // the vertices: those the edges name, and every section that sets something
+    for (unsigned int i = 0; i < max_vertex_sections; ++i)
+      {
+        prm.enter_subsection(section("Vertex", i));
+        if (prm.get("width factor") != "default" || prm.get("initial value") != "default" ||
+            prm.get("position") != "")
+          n_vertices = std::max(n_vertices, i + 1);
+        prm.leave_subsection();
+      }
+    for (unsigned int i = 0; i < n_vertices; ++i)
+      {
+        const std::string at = "Network/" + section("Vertex", i) + "/";
+        prm.enter_subsection(section("Vertex", i));
+        Vertex v;
+        v.label = section("Vertex", i);
+        const std::string w = prm.get("width factor"), value = prm.get("initial value"),
+                          pos = prm.get("position");
+        prm.leave_subsection();
+        v.width_factor = NAN;
+        if (w != "default")
+          {
+            const auto x = as_number(w);
+            require(x && *x >= 0 && std::isfinite(*x), at + "width factor", w,
+                    "default or a number >= 0");
+            v.width_factor = *x;
+          }
+        value_given.push_back(value != "default");
+        if (value != "default")
+          v.initial_value = vertex_value(value, at + "initial value");
+        if (!pos.empty())
+          v.position = position(pos, at + "position");
+        graph.vertices.push_back(v);
+      }
+  }
+} // namespace granular_dg::network

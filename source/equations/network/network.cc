@@ -1,0 +1,1117 @@
+#include <deal.II/base/quadrature_lib.h>
+#include <deal.II/base/vectorization.h>
+
+#include <granular_dg/base/errors.h>
+#include <granular_dg/base/output.h>
+#include <granular_dg/dg/solution_transfer.h>
+#include <granular_dg/equations/network/network.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <numeric>
+#include <optional>
+
+namespace granular_dg::network
+{
+  void
+  NetworkState::reinit(const NetworkState &other)
+  {
+    edges.assign(other.edges.size(), 0.);
+    vertices.assign(other.vertices.size(), 0.);
+  }
+
+  namespace
+  {
+    /// Adaptive Gauss integration of the vector of moments int g(x) L_k(xi)
+    /// over [a, b] within a cell [x0, x0 + h]: the interval is bisected
+    /// until two levels agree to round-off, so a jump inside a cell is
+    /// located to machine precision (exact cell averages, (4.11)).
+    void
+    integrate_moments(const Function<1> &g, const std::vector<Polynomials::Legendre> &legendre,
+                      const QGauss<1> &quad, const double x0, const double h, const double a,
+                      const double b, std::vector<double> &result, const unsigned int depth)
+    {
+      const unsigned int n_modes = legendre.size();
+      auto moments = [&](const double lo, const double hi) {
+        std::vector<double> m(n_modes, 0.);
+        for (unsigned int q = 0; q < quad.size(); ++q)
+          {
+            const double x = lo + (hi - lo) * quad.point(q)[0];
+            const double w = (hi - lo) * quad.weight(q);
+            const double v = g.value(Point<1>(x));
+            for (unsigned int k = 0; k < n_modes; ++k)
+              m[k] += w * v * legendre[k].value((x - x0) / h);
+          }
+        return m;
+      };
+      const double mid   = 0.5 * (a + b);
+      const auto   whole = moments(a, b);
+      auto         halves = moments(a, mid);
+      const auto   right  = moments(mid, b);
+      double       diff = 0, size = 0;
+      for (unsigned int k = 0; k < n_modes; ++k)
+        {
+          halves[k] += right[k];
+          diff = std::max(diff, std::abs(halves[k] - whole[k]));
+          size = std::max(size, std::abs(halves[k]));
+        }
+      if (diff <= 1e-15 * std::max(b - a, size) || depth >= 55)
+        {
+          for (unsigned int k = 0; k < n_modes; ++k)
+            result[k] += halves[k];
+          return;
+        }
+      integrate_moments(g, legendre, quad, x0, h, a, mid, result, depth + 1);
+      integrate_moments(g, legendre, quad, x0, h, mid, b, result, depth + 1);
+    }
+
+    /// [min, max] of the finite values v (in SIMD lanes: the same bounds as a
+    /// scalar scan, min and max being exact in any order)
+    std::pair<double, double>
+    value_range(const std::vector<double> &v)
+    {
+      using VA           = VectorizedArray<double>;
+      constexpr auto W   = VA::size();
+      VA             lo  = INFINITY, hi = -INFINITY;
+      std::size_t    i   = 0;
+      for (; i + W <= v.size(); i += W)
+        {
+          VA x;
+          x.load(v.data() + i);
+          lo = std::min(lo, x);
+          hi = std::max(hi, x);
+        }
+      double a = INFINITY, b = -INFINITY;
+      for (unsigned int l = 0; l < W; ++l)
+        {
+          a = std::min(a, lo[l]);
+          b = std::max(b, hi[l]);
+        }
+      for (; i < v.size(); ++i)
+        {
+          a = std::min(a, v[i]);
+          b = std::max(b, v[i]);
+        }
+      return {a, b};
+    }
+
+    /// whether every entry of v is finite (without a branch per entry)
+    bool
+    all_finite(const std::vector<double> &v)
+    {
+      bool ok = true;
+      for (const double x : v)
+        ok &= std::isfinite(x);
+      return ok;
+    }
+  } // namespace
+
+  std::vector<unsigned int>
+  edge_cells(const Graph &graph, const double cells_per_unit_length)
+  {
+    std::vector<unsigned int> n;
+    for (const Edge &e : graph.edges)
+      n.push_back(
+        std::max(1u, static_cast<unsigned int>(std::lround(e.length * cells_per_unit_length))));
+    return n;
+  }
+
+  double
+  snapshot_bytes(const unsigned long n_cells, const dg::DiscretizationParameters &method,
+                 const NetworkOptions &options)
+  {
+    const unsigned int points = method.profile_points > 0 ? method.profile_points :
+                                                            std::max(2u, method.degree + 1);
+    return n_cells * points * (options.write_vtu ? 60. : 0.) + n_cells * points * 40.;
+  }
+
+  NetworkProblem::NetworkProblem(const Graph &graph, const dg::DiscretizationParameters &m,
+                                 const NetworkOptions &o, std::vector<EdgeData> edge_data,
+                                 const ExactSolution *exact, const std::string &scene)
+    : net(graph)
+    , method(m)
+    , options(o)
+    , data(std::move(edge_data))
+    , exact(exact)
+    , scene(scene)
+  {
+    AssertThrow(data.size() == net.edges.size(), ExcMessage("one EdgeData per edge"));
+    h_min      = 1e300;
+    edge_cells = network::edge_cells(net, options.cells_per_unit_length);
+    for (unsigned int k = 0; k < net.edges.size(); ++k)
+      {
+        edge_h.push_back(net.edges[k].length / edge_cells[k]);
+        h_min = std::min(h_min, edge_h.back());
+      }
+    ranks = std::make_unique<EdgePartition>(net, edge_cells, MPI_COMM_WORLD);
+
+    // this rank's edges in one line engine, in the partition's order
+    local_edge.assign(net.edges.size(), -1);
+    std::vector<FluxFunction> laws;
+    std::vector<unsigned int> cells;
+    std::vector<double>       sizes;
+    for (const unsigned int k : ranks->edges())
+      {
+        local_edge[k] = laws.size();
+        laws.push_back(net.edges[k].flux);
+        cells.push_back(edge_cells[k]);
+        sizes.push_back(edge_h[k]);
+      }
+    const EdgeMethod edge_method{method.degree, options.flux,     method.limiter,
+                                 method.tvb_M,  method.indicator, method.indicator_threshold,
+                                 method.blending_max};
+    lines = std::make_unique<EdgeLines>(edge_method, std::move(laws), cells, sizes);
+    for (const unsigned int k : ranks->edges())
+      for (const unsigned int side : {0u, 1u})
+        lines->kind(local(k), side) = net.edges[k].vertex_at(side) ? EndKind::vertex :
+                                      net.edges[k].far_end == FarEnd::dirichlet ?
+                                                                     EndKind::dirichlet :
+                                                                     EndKind::outflow;
+
+    auto ends = net.all_vertex_ends();
+    for (unsigned int v = 0; v < net.vertices.size(); ++v)
+      {
+        double width = 0;
+        for (const auto &end : ends[v])
+          width += 0.5 * edge_h[end.edge];
+        junctions.emplace_back(net, v, std::move(ends[v]), options.flux,
+                               net.vertices[v].width_factor * width);
+      }
+
+    // the end faces of this rank's edges at vertices and with far-end data
+    for (const unsigned int k : ranks->edges())
+      for (const unsigned int side : {0u, 1u})
+        if (net.edges[k].vertex_at(side))
+          vertex_faces.emplace_back(2 * local(k) + side,
+                                    side == 0 ? net.edges[k].from : net.edges[k].to);
+        else if (net.edges[k].far_end == FarEnd::dirichlet)
+          data_faces.emplace_back(k, side);
+    // where the trace of each end of this rank's vertices comes from (a
+    // vertex not cut has all its edges here)
+    std::vector<bool> here(net.vertices.size(), false);
+    for (const unsigned int v : ranks->vertices())
+      here[v] = true;
+    vertex_ends.first.assign(1, 0);
+    for (unsigned int v = 0; v < net.vertices.size(); ++v)
+      {
+        const auto &ends = junctions[v].ends();
+        for (unsigned int i = 0; here[v] && i < ends.size(); ++i)
+          {
+            const int          slot = ranks->slot(v, i);
+            const unsigned int k    = ends[i].edge;
+            vertex_ends.source.push_back(
+              slot >= 0 ? -1 - long(slot) :
+                          long(lines->index(local(k), ends[i].incoming ? edge_cells[k] - 1 : 0)));
+            vertex_ends.at_end.push_back(ends[i].incoming);
+            vertex_ends.edge.push_back(k);
+          }
+        vertex_ends.first.push_back(vertex_ends.source.size());
+      }
+    exchanged.assign(ranks->n_slots(), 0.);
+    u.vertices.assign(net.vertices.size(), 0.);
+    vertex_u0.assign(net.vertices.size(), 0.);
+    u.edges.assign(lines->size(), 0.);
+  }
+
+  NetworkProblem::~NetworkProblem() = default;
+
+  unsigned int
+  NetworkProblem::n_stages() const
+  {
+    const bool euler = options.integrator == Integrator::forward_euler ||
+                       (options.integrator == Integrator::automatic && method.degree == 0);
+    return euler ? 1 : dg::SSPRK3<NetworkState>::n_stages;
+  }
+
+  unsigned long
+  NetworkProblem::n_dofs() const
+  {
+    // the edges' modes and the vertex values
+    return net.vertices.size() + n_cells() * (method.degree + 1);
+  }
+
+  unsigned long
+  NetworkProblem::n_cells() const
+  {
+    return std::accumulate(edge_cells.begin(), edge_cells.end(), 0ul);
+  }
+
+  EvolutionInfo
+  NetworkProblem::info() const
+  {
+    EvolutionInfo i;
+    i.scene    = scene;
+    i.physics  = System::name;
+    i.dim      = 1;
+    i.degree   = method.degree;
+    i.n_cells  = n_cells();
+    i.n_dofs   = n_dofs();
+    i.h_min    = h_min;
+    i.n_stages = n_stages();
+    i.snapshot_files = options.profiles == Profiles::per_edge ? "solution.pvd, profile-NNNN-edge-K.csv" :
+                       options.profiles == Profiles::one_file ? "solution.pvd, profile-NNNN.csv" :
+                                                             "solution.pvd";
+    const std::string integrator = n_stages() == 1 ? "forward_euler" : "ssprk3";
+    std::string vertices;
+    if (net.is_star())
+      vertices = std::to_string(junctions[0].ends().size()) + " vertex ends, vertex width " +
+                 format_number(junctions[0].width());
+    else
+      vertices = std::to_string(net.vertices.size()) + " vertices";
+    i.description = std::to_string(net.edges.size()) + " edges, " + vertices + ", " +
+                    std::to_string(i.n_cells) + " cells, " + std::to_string(i.n_dofs) +
+                    " DoFs, degree " + std::to_string(method.degree) + ", " + integrator +
+                    (ranks->parallel() ? "; " + ranks->describe() : "");
+    i.method.add("engine", "line");
+    i.method.add("numerical_flux", numerical_flux_names.name(options.flux));
+    i.method.add("limiter", method.limiter_name);
+    if (method.blending_max > 0)
+      i.method.add("subcell_blending", method.blending_max);
+    i.method.add("scheme", integrator);
+    i.method.add("n_edges", static_cast<long long>(net.edges.size()));
+    i.bytes_per_snapshot = snapshot_bytes(i.n_cells, method, options);
+    return i;
+  }
+
+  double
+  NetworkProblem::trace(const unsigned int k, const bool at_end, const NetworkState &s) const
+  {
+    return lines->trace(s.edges.data(), local(k), at_end);
+  }
+
+  double
+  NetworkProblem::initialize()
+  {
+    const QGauss<1> quad(method.degree + 3);
+    for (const unsigned int k : ranks->edges())
+      {
+        const double h = edge_h[k];
+        data[k].initial->set_time(0.);
+        for (unsigned int c = 0; c < edge_cells[k]; ++c)
+          {
+            const double        x0 = c * h;
+            std::vector<double> moments(method.degree + 1, 0.);
+            // split at the known jumps first, then refine adaptively
+            std::vector<double> pieces{x0, x0 + h};
+            for (const double b : data[k].initial_breakpoints)
+              if (b > x0 && b < x0 + h)
+                pieces.push_back(b);
+            std::sort(pieces.begin(), pieces.end());
+            for (unsigned int p = 0; p + 1 < pieces.size(); ++p)
+              integrate_moments(*data[k].initial, lines->legendre(), quad, x0, h, pieces[p],
+                                pieces[p + 1], moments, 0);
+            for (unsigned int m = 0; m <= method.degree; ++m)
+              u.edges[lines->index(local(k), c) + m] = moments[m] / h;
+          }
+      }
+    // the limiter sees the vertex values as the neighbours of the edge ends
+    exchange_traces(u);
+    for (const unsigned int v : ranks->vertices())
+      {
+        const auto &given = net.vertices[v].initial_value;
+        u.vertices[v]     = given ? *given : balance_at(v, vertex_traces(u, v), 0.);
+        vertex_u0[v]  = u.vertices[v];
+      }
+    set_end_states(0.);
+    lines->limit(u.edges.data());
+    exchange_traces(u);
+    for (const unsigned int v : ranks->vertices())
+      if (!net.vertices[v].initial_value || junctions[v].width() == 0)
+        u.vertices[v] = balance_at(v, vertex_traces(u, v), 0.);
+    t      = 0.;
+    inflow = 0.;
+    balance.mass0 = mass();
+    const double l1 = l1_norm();
+    balance.scale = l1 > 0 ? l1 : 1.;
+    tv0 = tv_max = total_variation();
+    u00          = u.vertices.empty() ? 0. : vertex_values()[0];
+    return 0.;
+  }
+
+  Inadmissible
+  NetworkProblem::failure(const double time, const int k, const double x, const double value,
+                          const std::string &reason) const
+  {
+    Inadmissible f;
+    f.time   = time;
+    f.where  = k >= 0     ? net.edges[k].label + " x = " + format_number(x) :
+               net.is_star() ? std::string("vertex") :
+                               net.vertices[-1 - k].label;
+    f.names  = {"u"};
+    f.state  = {value};
+    f.reason = reason;
+    return f;
+  }
+
+  void
+  NetworkProblem::check_initial_state(const double time)
+  {
+    NetworkState s = u;
+    bounds         = {-INFINITY, INFINITY};
+    try
+      {
+        post_stage_checks(s, time);
+      }
+    catch (Inadmissible &f)
+      {
+        f.initial = true;
+        throw;
+      }
+  }
+
+  const std::vector<double> &
+  NetworkProblem::vertex_traces(const NetworkState &s, const unsigned int v) const
+  {
+    trace_buffer.clear();
+    for (unsigned int i = vertex_ends.first[v]; i < vertex_ends.first[v + 1]; ++i)
+      {
+        const long source = vertex_ends.source[i];
+        trace_buffer.push_back(source < 0 ?
+                                 exchanged[-1 - source] :
+                                 lines->trace_at(s.edges.data() + source, vertex_ends.at_end[i]));
+      }
+    return trace_buffer;
+  }
+
+  void
+  NetworkProblem::exchange_traces(const NetworkState &s) const
+  {
+    if (ranks->n_cut_vertices() == 0)
+      return;
+    const auto &sent = ranks->sent_ends();
+    exchanged.assign(exchanged.size(), 0.);
+    for (const auto &end : sent)
+      exchanged[end.slot] = trace(end.edge, end.at_end, s);
+    ranks->exchange(exchanged);
+  }
+
+  double
+  NetworkProblem::balance_at(const unsigned int v, const std::vector<double> &traces,
+                             const double time) const
+  {
+    if (!ranks->parallel())
+      return junctions[v].balance(traces, time);
+    try
+      {
+        return junctions[v].balance(traces, time);
+      }
+    catch (const RunError &e)
+      {
+        if (!pending_error)
+          pending_error = e.what();
+        return NAN;
+      }
+  }
+
+  std::vector<double>
+  NetworkProblem::vertex_values() const
+  {
+    if (!ranks->parallel())
+      return u.vertices;
+    std::vector<double> all(u.vertices.size(), 0.);
+    for (const unsigned int v : ranks->vertices())
+      if (ranks->reports_vertex(v))
+        all[v] = u.vertices[v];
+    ranks->sum(all.data(), all.size());
+    return all;
+  }
+
+  double
+  NetworkProblem::far_end_inflow(const double time, const NetworkState &s) const
+  {
+    double sum = 0;
+    for (const unsigned int k : ranks->edges())
+      {
+        const Edge &e = net.edges[k];
+        // the free end x = 0 (inflow side) and x = L (outflow side)
+        for (const bool in : {true, false})
+          {
+            if ((in ? e.from : e.to) != free_end)
+              continue;
+            const double x     = in ? 0. : e.length;
+            const double inside = trace(k, !in, s);
+            double       ghost  = inside;
+            if (e.far_end == FarEnd::dirichlet)
+              {
+                data[k].far_end->set_time(time);
+                ghost = data[k].far_end->value(Point<1>(x));
+              }
+            sum += in ? e.flux.numerical_flux(options.flux, ghost, inside) :
+                        -e.flux.numerical_flux(options.flux, inside, ghost);
+          }
+      }
+    return sum;
+  }
+
+  double
+  NetworkProblem::vertex_state(const unsigned int v, const NetworkState &s, const double time) const
+  {
+    return junctions[v].width() > 0 ? s.vertices[v] : balance_at(v, vertex_traces(s, v), time);
+  }
+
+  const std::vector<double> &
+  NetworkProblem::couple(const double time, const NetworkState &src) const
+  {
+    rates.resize(junctions.size());
+    exchange_traces(src);
+    for (const unsigned int v : ranks->vertices())
+      {
+        const auto  &traces = vertex_traces(src, v);
+        const double u0     = junctions[v].width() > 0 ? src.vertices[v] :
+                                                         balance_at(v, traces, time);
+        vertex_u0[v]        = u0;
+        rates[v]            = junctions[v].rate(traces, u0);
+      }
+    stage_inflow.push_back(far_end_inflow(time, src));
+    set_end_states(time);
+    return rates;
+  }
+
+  void
+  NetworkProblem::set_end_states(const double time) const
+  {
+    for (const auto &[face, v] : vertex_faces)
+      lines->outer_state(face / 2, face % 2) = vertex_u0[v];
+    for (const auto &[k, side] : data_faces)
+      {
+        data[k].far_end->set_time(time);
+        lines->outer_state(local(k), side) =
+          data[k].far_end->value(Point<1>(side == 0 ? 0. : net.edges[k].length));
+      }
+  }
+
+  void
+  NetworkProblem::apply_stage(const double time, const NetworkState &src, NetworkState &dst,
+                              const dg::StageUpdate<NetworkState> &s) const
+  {
+    // the vertex coupling is part of the right-hand side of the network
+    StepPhases::Scope scope(phases, StepPhases::operator_apply);
+    const auto       &rate = couple(time, src);
+    dst.edges.resize(src.edges.size());
+    lines->stage(src.edges.data(), dst.edges.data(), s.old ? s.old->edges.data() : nullptr,
+                 s.alpha, s.beta, s.gamma);
+    dst.vertices.resize(src.vertices.size());
+    for (const unsigned int v : ranks->vertices())
+      dst.vertices[v] =
+        dg::stage_value(s, src.vertices[v], s.old ? s.old->vertices[v] : 0., rate[v]);
+  }
+
+  std::pair<double, double>
+  NetworkProblem::range_of_step(const double time, const double dt) const
+  {
+    double lo = INFINITY, hi = -INFINITY;
+    for (const unsigned int v : ranks->vertices())
+      {
+        lo = std::min(lo, u.vertices[v]);
+        hi = std::max(hi, u.vertices[v]);
+      }
+    const auto [lo_edges, hi_edges] = value_range(u.edges);
+    lo = std::min(lo, lo_edges);
+    hi = std::max(hi, hi_edges);
+    for (const unsigned int k : ranks->edges())
+      for (const bool start : {true, false})
+        if ((start ? net.edges[k].from : net.edges[k].to) == free_end &&
+            net.edges[k].far_end == FarEnd::dirichlet)
+          for (const double s : {time, time + 0.5 * dt, time + dt})
+            {
+              data[k].far_end->set_time(s);
+              const double g = data[k].far_end->value(Point<1>(start ? 0. : net.edges[k].length));
+              lo = std::min(lo, g);
+              hi = std::max(hi, g);
+            }
+    return {ranks->min(lo), ranks->max(hi)};
+  }
+
+  void
+  NetworkProblem::check_maximum_principle(const NetworkState &s, const double stage_time)
+  {
+    const auto [lo, hi] = bounds;
+    const double tol    = 1e-12 * (hi - lo + std::max(std::abs(lo), std::abs(hi)));
+    // (degree 0: the array holds the means only) the cell to report, if any
+    const auto [lo_s, hi_s] = value_range(s.edges);
+    if (lo_s >= lo - tol && hi_s <= hi + tol)
+      return;
+    for (const unsigned int k : ranks->edges())
+      for (unsigned int c = 0; c < edge_cells[k]; ++c)
+        {
+          const double v = s.edges[lines->index(local(k), c)];
+          if (v < lo - tol || v > hi + tol)
+            throw failure(stage_time, int(k), (c + 0.5) * edge_h[k], v,
+                          "maximum principle violated: u outside [" + format_number(lo) +
+                            ", " + format_number(hi) +
+                            "], the range of the cell averages, vertex values and "
+                            "far-end data at the start of the step (degree 0 is monotone "
+                            "only up to its CFL limit; CFL number " +
+                            format_number(method.cfl) + ")");
+        }
+  }
+
+  void
+  NetworkProblem::post_stage(NetworkState &s, const double stage_time)
+  {
+    {
+      StepPhases::Scope scope(phases, StepPhases::limiter);
+      // vertices without volume follow the traces: shared ones need them
+      const bool shared = ranks->has_cut_vertex_without_volume();
+      if (shared)
+        exchange_traces(s);
+      for (const unsigned int v : ranks->vertices())
+        vertex_u0[v] = vertex_state(v, s, stage_time);
+      set_end_states(stage_time);
+      lines->limit(s.edges.data());
+      if (shared)
+        exchange_traces(s);
+      for (const unsigned int v : ranks->vertices())
+        if (junctions[v].width() == 0)
+          s.vertices[v] = balance_at(v, vertex_traces(s, v), stage_time);
+    }
+    StepPhases::Scope scope(phases, StepPhases::admissibility);
+    post_stage_checks(s, stage_time);
+  }
+
+  void
+  NetworkProblem::post_stage_checks(const NetworkState &s, const double stage_time)
+  {
+    const bool principle =
+      method.degree == 0 && std::isfinite(bounds.first) && std::isfinite(bounds.second);
+    if (principle)
+      {
+        // a vertex is a neighbour of its edge ends: its (stage) value is a
+        // value the edges may take on
+        for (const unsigned int v : ranks->vertices())
+          {
+            bounds.first  = std::min(bounds.first, s.vertices[v]);
+            bounds.second = std::max(bounds.second, s.vertices[v]);
+          }
+        bounds = {ranks->min(bounds.first), ranks->max(bounds.second)};
+      }
+    // every rank checks its part, then all report the first failure
+    std::optional<Inadmissible> found;
+    try
+      {
+        local_checks(s, stage_time, principle);
+      }
+    catch (const Inadmissible &f)
+      {
+        found = f;
+      }
+    std::optional<std::string> error;
+    std::swap(error, pending_error);
+    ranks->agree(found, error);
+  }
+
+  void
+  NetworkProblem::local_checks(const NetworkState &s, const double stage_time,
+                               const bool principle)
+  {
+    for (const unsigned int v : ranks->vertices())
+      if (!std::isfinite(s.vertices[v]))
+        throw failure(stage_time, -1 - int(v), 0., s.vertices[v], "vertex value is not finite");
+    // (non-finite values fail this test too, and are reported as such below)
+    const bool finite = all_finite(s.edges);
+    if (principle)
+      {
+        if (finite)
+          check_maximum_principle(s, stage_time);
+      }
+    if (!finite)
+      // report the first cell whose modes are not finite
+      for (const unsigned int k : ranks->edges())
+        for (unsigned int c = 0; c < edge_cells[k]; ++c)
+          for (unsigned int m = 0; m <= method.degree; ++m)
+            if (!std::isfinite(s.edges[lines->index(local(k), c) + m]))
+              throw failure(stage_time, int(k), (c + 0.5) * edge_h[k],
+                            s.edges[lines->index(local(k), c)], "state is not finite");
+  }
+
+  double
+  NetworkProblem::time_step(const double time)
+  {
+    double speed_over_h = lines->max_speed_over_h(u.edges.data());
+    for (const unsigned int v : ranks->vertices())
+      for (std::size_t i = vertex_ends.first[v]; i < vertex_ends.first[v + 1]; ++i)
+        if (const unsigned int k = vertex_ends.edge[i]; ranks->owns_edge(k))
+          speed_over_h = std::max(speed_over_h,
+                                  std::abs(lines->flux(local(k)).derivative(u.vertices[v])) /
+                                    edge_h[k]);
+    const double dt = method.cfl / ranks->max(speed_over_h);
+    if (!(std::isfinite(dt) && dt > 0))
+      throw RunError("time step is " + format_number(dt) + " at t = " + format_number(time) +
+                     " (all characteristic speeds vanish or are not finite)");
+    return dt;
+  }
+
+  void
+  NetworkProblem::advance(const double time, const double dt)
+  {
+    t = time;
+    stage_inflow.clear();
+    if (method.degree == 0)
+      bounds = range_of_step(t, dt);
+    if (n_stages() == 1)
+      {
+        dg::ForwardEuler<NetworkState>().step(*this, u, t, dt,
+                                              [&](NetworkState &s, double stage_time, double) {
+                                                post_stage(s, stage_time);
+                                              });
+        inflow += dt * stage_inflow[0];
+      }
+    else
+      {
+        rk3.step(*this, u, t, dt, [&](NetworkState &s, const double stage_time, const double) {
+          post_stage(s, stage_time);
+        });
+        // the Butcher weights of the Shu-Osher SSPRK3: 1/6, 1/6, 2/3
+        inflow += dt * (stage_inflow[0] / 6. + stage_inflow[1] / 6. + 2. * stage_inflow[2] / 3.);
+      }
+    t += dt;
+  }
+
+  double
+  NetworkProblem::balance_residual() const
+  {
+    double sums[2] = {local_mass(), inflow};
+    ranks->sum(sums, 2);
+    return (sums[0] - balance.mass0 - sums[1]) / balance.scale;
+  }
+
+  void
+  NetworkProblem::end_of_step(const double, const double, const unsigned long)
+  {
+    // one reduction for the step's diagnostics
+    const auto local = local_sums();
+    double     sums[3] = {local[0], inflow, local[1]};
+    ranks->sum(sums, 3);
+    const double r       = (sums[0] - balance.mass0 - sums[1]) / balance.scale;
+    balance.max_residual = std::max(balance.max_residual, std::abs(r));
+    balance.max_step     = std::max(balance.max_step, std::abs(r - balance.last));
+    balance.last         = r;
+    tv_max               = std::max(tv_max, sums[2]);
+  }
+
+  void
+  NetworkProblem::store(const Slot slot)
+  {
+    (slot == Slot::last_good ? last_good : benchmark_start) = u;
+  }
+
+  void
+  NetworkProblem::restore(const Slot slot)
+  {
+    u = slot == Slot::last_good ? last_good : benchmark_start;
+  }
+
+  double
+  NetworkProblem::mass() const
+  {
+    return ranks->sum(local_mass());
+  }
+
+  double
+  NetworkProblem::local_mass() const
+  {
+    return local_sums()[0];
+  }
+
+  std::array<double, 2>
+  NetworkProblem::local_sums() const
+  {
+    // mass: the vertices' part, then each edge's sum (as its own integral);
+    // TV: the jumps along the edges, then those at the vertices
+    double m = 0, tv = 0;
+    for (const unsigned int v : ranks->vertices())
+      if (ranks->reports_vertex(v))
+        m += junctions[v].width() * u.vertices[v];
+    const unsigned int n = lines->n_modes();
+    for (const unsigned int k : ranks->edges())
+      {
+        const double *mean      = u.edges.data() + lines->index(local(k), 0);
+        double        edge_mass = 0;
+        for (unsigned int c = 0; c < edge_cells[k]; ++c)
+          edge_mass += edge_h[k] * mean[c * n];
+        m += edge_mass;
+        for (unsigned int c = 0; c + 1 < edge_cells[k]; ++c)
+          tv += std::abs(mean[(c + 1) * n] - mean[c * n]);
+      }
+    for (const unsigned int v : ranks->vertices())
+      for (const auto &end : junctions[v].ends())
+        if (ranks->owns_edge(end.edge))
+          {
+            const unsigned int c = end.incoming ? edge_cells[end.edge] - 1 : 0;
+            tv += std::abs(u.vertices[v] - u.edges[lines->index(local(end.edge), c)]);
+          }
+    return {{m, tv}};
+  }
+
+  double
+  NetworkProblem::l1_norm() const
+  {
+    double m = 0;
+    for (const unsigned int v : ranks->vertices())
+      if (ranks->reports_vertex(v))
+        m += junctions[v].width() * std::abs(u.vertices[v]);
+    for (const unsigned int k : ranks->edges())
+      {
+      for (unsigned int c = 0; c < edge_cells[k]; ++c)
+        m += std::abs(u.edges[lines->index(local(k), c)]) * edge_h[k];
+      }
+    return ranks->sum(m);
+  }
+
+  double
+  NetworkProblem::rh_residual() const
+  {
+    // every vertex's residual on the rank that reports it, then the
+    // largest as on one rank
+    exchange_traces(u);
+    std::vector<double> residual(junctions.size(), 0.);
+    for (const unsigned int v : ranks->vertices())
+      if (ranks->reports_vertex(v))
+        residual[v] = -junctions[v].net_outflow(vertex_traces(u, v), u.vertices[v]);
+    ranks->sum(residual.data(), residual.size());
+    double largest = 0;
+    for (unsigned int v = 0; v < junctions.size(); ++v)
+      if (std::abs(residual[v]) > std::abs(largest) || v == 0)
+        largest = residual[v];
+    return largest;
+  }
+
+  double
+  NetworkProblem::total_variation() const
+  {
+    return ranks->sum(local_sums()[1]);
+  }
+
+  NetworkErrors
+  NetworkProblem::errors(const ExactSolution &solution, const double time) const
+  {
+    NetworkErrors   e;
+    const QGauss<1> quad(2 * method.degree + 8);
+    double          l2 = 0;
+    e.l1_per_edge.assign(net.edges.size(), 0.);
+    for (const unsigned int k : ranks->edges())
+      {
+        const auto   breaks = solution.breakpoints(k, time);
+        const double h      = edge_h[k];
+        for (unsigned int c = 0; c < edge_cells[k]; ++c)
+          {
+            const double        x0 = c * h;
+            std::vector<double> pieces{x0, x0 + h};
+            for (const double b : breaks)
+              if (b > x0 && b < x0 + h)
+                pieces.push_back(b);
+            std::sort(pieces.begin(), pieces.end());
+            for (unsigned int p = 0; p + 1 < pieces.size(); ++p)
+              for (unsigned int q = 0; q < quad.size(); ++q)
+                {
+                  const double w = (pieces[p + 1] - pieces[p]) * quad.weight(q);
+                  const double x = pieces[p] + (pieces[p + 1] - pieces[p]) * quad.point(q)[0];
+                  const double d = std::abs(lines->value(u.edges.data(), local(k), c, (x - x0) / h) -
+                                            solution.value(k, x, time));
+                  e.l1_per_edge[k] += w * d;
+                  l2 += w * d * d;
+                  e.linf = std::max(e.linf, d);
+                }
+          }
+      }
+    for (const unsigned int v : ranks->vertices())
+      if (ranks->reports_vertex(v))
+        {
+          const double d0 = std::abs(u.vertices[v] - solution.vertex_value(v, time));
+          e.l1_vertex += junctions[v].width() * d0;
+          l2 += junctions[v].width() * d0 * d0;
+          if (junctions[v].width() > 0)
+            e.linf = std::max(e.linf, d0);
+        }
+    // each edge's error comes from one rank: the sum over the edges is the
+    // one of a serial run
+    ranks->sum(e.l1_per_edge.data(), e.l1_per_edge.size());
+    double sums[2] = {e.l1_vertex, l2};
+    ranks->sum(sums, 2);
+    e.l1_vertex = sums[0];
+    e.linf      = ranks->max(e.linf);
+    for (const double l1 : e.l1_per_edge)
+      e.l1_edges += l1;
+    e.l1 = e.l1_edges + e.l1_vertex;
+    e.l2 = std::sqrt(sums[1]);
+    return e;
+  }
+
+  double
+  NetworkProblem::l1_distance(const NetworkProblem &other) const
+  {
+    const QGauss<1> quad(method.degree + 2);
+    double          sum = 0;
+    for (const unsigned int v : ranks->vertices())
+      if (ranks->reports_vertex(v))
+        sum += junctions[v].width() * std::abs(u.vertices[v] - other.u.vertices[v]);
+    for (const unsigned int k : ranks->edges())
+      {
+        for (unsigned int c = 0; c < edge_cells[k]; ++c)
+          for (unsigned int q = 0; q < quad.size(); ++q)
+            sum += quad.weight(q) * edge_h[k] *
+                   std::abs(lines->value(u.edges.data(), local(k), c, quad.point(q)[0]) -
+                            other.lines->value(other.u.edges.data(), other.local(k), c,
+                                               quad.point(q)[0]));
+      }
+    return ranks->sum(sum);
+  }
+
+  std::vector<std::vector<std::pair<double, double>>>
+  NetworkProblem::sample(const unsigned int points_per_cell) const
+  {
+    std::vector<std::vector<std::pair<double, double>>> out(net.edges.size());
+    for (const unsigned int k : ranks->edges())
+      {
+        for (unsigned int c = 0; c < edge_cells[k]; ++c)
+          for (unsigned int j = 0; j < points_per_cell; ++j)
+            {
+              const double xi = points_per_cell == 1 ? 0.5 : j / double(points_per_cell - 1);
+              out[k].emplace_back(c * edge_h[k] + xi * edge_h[k],
+                                  lines->value(u.edges.data(), local(k), c, xi));
+            }
+      }
+    return out;
+  }
+
+  std::vector<std::vector<std::pair<double, double>>>
+  NetworkProblem::gathered_sample(const unsigned int points_per_cell) const
+  {
+    auto out = sample(points_per_cell);
+    if (!ranks->parallel())
+      return out;
+    // the pairs of every edge as x_0, u_0, x_1, u_1, ...
+    std::vector<std::vector<double>> flat(out.size());
+    for (const unsigned int k : ranks->edges())
+      for (const auto &[x, value] : out[k])
+        flat[k].insert(flat[k].end(), {x, value});
+    gather_edge_values(flat);
+    for (unsigned int k = 0; k < flat.size(); ++k)
+      {
+        out[k].resize(flat[k].size() / 2);
+        for (std::size_t j = 0; j < out[k].size(); ++j)
+          out[k][j] = {flat[k][2 * j], flat[k][2 * j + 1]};
+      }
+    return out;
+  }
+
+  void
+  NetworkProblem::gather_edge_values(std::vector<std::vector<double>> &values) const
+  {
+    if (!ranks->parallel())
+      return;
+    // this rank's edges as (k, n, its n values), as bytes (gather_bytes:
+    // any size)
+    std::vector<double> mine;
+    for (const unsigned int k : ranks->edges())
+      {
+        mine.insert(mine.end(), {double(k), double(values[k].size())});
+        mine.insert(mine.end(), values[k].begin(), values[k].end());
+      }
+    const std::string bytes(reinterpret_cast<const char *>(mine.data()),
+                            mine.size() * sizeof(double));
+    for (const auto &b : gather_bytes(ranks->communicator(), bytes))
+      {
+        std::vector<double> part(b.size() / sizeof(double));
+        std::memcpy(part.data(), b.data(), b.size());
+        for (std::size_t i = 0; i < part.size();)
+          {
+            const auto k = static_cast<unsigned int>(part[i]);
+            const auto n = static_cast<std::size_t>(part[i + 1]);
+            values[k].assign(part.begin() + i + 2, part.begin() + i + 2 + n);
+            i += 2 + n;
+          }
+      }
+  }
+
+  std::vector<std::string>
+  NetworkProblem::timeseries_names() const
+  {
+    const bool               vertices = !junctions.empty();
+    std::vector<std::string> header{"mass", "mass_balance_residual", "boundary_inflow"};
+    if (vertices)
+      header.emplace_back("vertex_value");
+    header.emplace_back("total_variation");
+    if (vertices)
+      header.emplace_back("rh_residual");
+    if (exact && vertices)
+      header.emplace_back("vertex_exact");
+    if (exact)
+      header.emplace_back("l1_error");
+    if (exact && vertices)
+      header.emplace_back("l1_error_vertex");
+    if (method.blending_max > 0)
+      header.emplace_back("blended_cells");
+    return header;
+  }
+
+  std::string
+  NetworkProblem::timeseries_comment() const
+  {
+    const std::string blended =
+      method.blending_max > 0 ? "; blended_cells: cells of all edges with a blending factor > 0" : "";
+    if (net.is_star())
+      return "mass_balance_residual = |mass - mass(0) - boundary_inflow| / ||u(0)||_L1; "
+             "rh_residual = sum_in F - sum_out F at the vertex" +
+             blended;
+    return "mass_balance_residual = |mass - mass(0) - boundary_inflow| / ||u(0)||_L1; "
+           "vertex_value, vertex_exact: at " +
+           (junctions.empty() ? std::string("no vertex") : net.vertices[0].label) +
+           "; rh_residual = sum_in F - sum_out F at the vertex where it is largest" + blended;
+  }
+
+  std::vector<double>
+  NetworkProblem::timeseries_values(const double time)
+  {
+    const bool          vertices = !junctions.empty();
+    std::vector<double> row{mass(), std::abs(balance_residual()), boundary_inflow()};
+    if (vertices)
+      row.push_back(vertex_values()[0]);
+    row.push_back(total_variation());
+    if (vertices)
+      row.push_back(rh_residual());
+    if (exact)
+      {
+        const auto e = errors(*exact, time);
+        if (vertices)
+          row.push_back(exact->vertex_value(0, time));
+        row.push_back(e.l1);
+        if (vertices)
+          row.push_back(e.l1_vertex);
+      }
+    if (method.blending_max > 0)
+      {
+        // cells of all edges whose last stage blended in finite volumes
+        row.push_back(ranks->sum(double(lines->n_blended_cells())));
+      }
+    return row;
+  }
+
+  template <typename Archive>
+  void
+  NetworkProblem::state_io(Archive &ar, std::vector<double> &vertices,
+                           std::vector<std::vector<double>> &modes, double &total_inflow)
+  {
+    // the graph's files first: the parameters name a graph file, not its
+    // content, so a file changed since the checkpoint is refused here like
+    // a changed parameter (the content hash of each file, in the order read)
+    std::vector<std::pair<std::string, std::uint64_t>> files;
+    for (const GraphFile &f : net.files)
+      files.emplace_back(f.parameter, f.content_hash);
+    auto stored = files;
+    ar.io(stored);
+    for (unsigned int i = 0; i < files.size(); ++i)
+      if (i >= stored.size() || stored[i] != files[i])
+        throw InputError("cannot resume from the checkpoint: " + net.files[i].parameter + " '" +
+                         net.files[i].name +
+                         "' changed since the checkpoint was written (its content differs "
+                         "from the run's; a resumed run needs the files it started with)");
+    // then the graph's size
+    std::uint64_t n_vertices = vertices.size(), n_edges = modes.size();
+    ar.io(n_vertices);
+    ar.io(n_edges);
+    if (n_vertices != u.vertices.size() || n_edges != net.edges.size())
+      throw RunError("the checkpoint's network has " + std::to_string(n_vertices) +
+                     " vertices and " + std::to_string(n_edges) + " edges, this one " +
+                     std::to_string(u.vertices.size()) + " and " +
+                     std::to_string(net.edges.size()));
+    ar.io(total_inflow);
+    for (double &v : vertices)
+      ar.io(v);
+    for (unsigned int k = 0; k < modes.size(); ++k)
+      {
+        ar.io(modes[k]);
+        if (modes[k].size() != edge_cells[k] * (method.degree + 1))
+          throw RunError("the checkpoint's network has other edge sizes");
+      }
+    for (double *x : {&balance.mass0, &balance.scale, &balance.last, &balance.max_residual,
+                      &balance.max_step, &tv0, &u00, &tv_max})
+      ar.io(*x);
+  }
+
+  void
+  NetworkProblem::save(ByteWriter &w)
+  {
+    // every edge's modes in the order of the graph, on rank 0 (which writes
+    // the checkpoint): the file does not depend on the number of ranks
+    std::vector<std::vector<double>> modes(net.edges.size());
+    for (const unsigned int k : ranks->edges())
+      modes[k].assign(u.edges.begin() + lines->index(local(k), 0),
+                      u.edges.begin() + lines->index(local(k), edge_cells[k]));
+    gather_edge_values(modes);
+    auto   vertices     = vertex_values();
+    double total_inflow = boundary_inflow();
+    if (ranks->rank() == 0)
+      state_io(w, vertices, modes, total_inflow);
+  }
+
+  void
+  NetworkProblem::load(ByteReader &r)
+  {
+    // every rank reads the whole state and keeps its edges
+    std::vector<double>              vertices(u.vertices.size());
+    std::vector<std::vector<double>> modes(net.edges.size());
+    double                           total_inflow = 0;
+    state_io(r, vertices, modes, total_inflow);
+    u.vertices = vertices;
+    inflow     = ranks->rank() == 0 ? total_inflow : 0.;
+    for (const unsigned int k : ranks->edges())
+      std::copy(modes[k].begin(), modes[k].end(), u.edges.begin() + lines->index(local(k), 0));
+  }
+
+  void
+  NetworkProblem::finish(const double time, RunResult &result, const bool)
+  {
+    if (result.status != "completed")
+      return;
+    JsonObject &d = result.diagnostics;
+    d.add("n_edges", static_cast<long long>(net.edges.size()));
+    if (net.is_star())
+      {
+        d.add("n_vertex_ends", static_cast<long long>(junctions[0].ends().size()));
+        d.add("vertex_width", junctions[0].width());
+      }
+    else
+      {
+        long long ends = 0;
+        for (const auto &j : junctions)
+          ends += j.ends().size();
+        d.add("n_vertices", static_cast<long long>(junctions.size()));
+        d.add("n_vertex_ends", ends);
+      }
+    d.add("integrator", n_stages() == 1 ? "forward_euler" : "ssprk3");
+    d.add("cfl", method.cfl);
+    d.add("mass_initial", balance.mass0);
+    d.add("mass_final", mass());
+    d.add("boundary_inflow", boundary_inflow());
+    d.add("mass_balance_residual_max", balance.max_residual);
+    d.add("mass_step_residual_max", balance.max_step);
+    const auto vertices = vertex_values();
+    if (!junctions.empty())
+      {
+        d.add("vertex_value_initial", u00);
+        d.add("vertex_value_final", vertices[0]);
+        d.add("rh_residual_final", rh_residual());
+      }
+    if (!net.is_star() && junctions.size() <= 100)
+      d.add("vertex_values_final", vertices);
+    d.add("total_variation_initial", tv0);
+    d.add("total_variation_final", total_variation());
+    d.add("total_variation_max", tv_max);
+    d.add("cpu_time_loop_s", result.time_loop_cpu_s);
+    d.add("dof_updates_per_cpu_s", result.dof_updates_per_cpu_s_per_rank);
+    if (!exact)
+      return;
+    const auto e = errors(*exact, time);
+    result.errors.push_back({{e.l1, e.l2, e.linf}});
+    result.l2_error = e.l2;
+    d.add("exact_solution", exact->name());
+    if (!junctions.empty())
+      d.add("vertex_exact_final", exact->vertex_value(0, time));
+    d.add("l1_error", e.l1);
+    d.add("l1_error_edges", e.l1_edges);
+    d.add("l1_error_vertex", e.l1_vertex);
+    d.add("linf_error", e.linf);
+  }
+} // namespace granular_dg::network

@@ -1,0 +1,291 @@
+/**
+ * The network's output (solution-NNNN.vtu through deal.II's DataOutBase with
+ * every edge drawn in the plane, profile-NNNN-edge-K.csv), a single run on
+ * the TimeLoop, and the convergence study.
+ */
+
+#include <deal.II/base/data_out_base.h>
+#include <deal.II/base/utilities.h>
+#include <deal.II/grid/reference_cell.h>
+
+#include <granular_dg/base/errors.h>
+#include <granular_dg/base/output.h>
+#include <granular_dg/base/time_loop.h>
+#include <granular_dg/equations/network/network.h>
+
+#include <cmath>
+#include <fstream>
+#include <iomanip>
+#include <iostream>
+#include <sstream>
+
+namespace granular_dg::network
+{
+  namespace
+  {
+    std::string
+    snapshot_name(const std::string &prefix, const unsigned int index, const std::string &suffix)
+    {
+      return prefix + Utilities::int_to_string(index, 4) + suffix;
+    }
+
+    /// A line patch in the plane through the given points with the values of
+    /// u, f(u), the edge coordinate and the edge number at each (points of a
+    /// DataOutBase patch: n_subdivisions + 1 of them, in order).
+    DataOutBase::Patch<1, 2>
+    line_patch(const std::vector<Point<2>> &points, const std::vector<std::array<double, 4>> &values,
+               const unsigned int index)
+    {
+      DataOutBase::Patch<1, 2> patch;
+      patch.vertices[0]          = points.front();
+      patch.vertices[1]          = points.back();
+      patch.n_subdivisions       = points.size() - 1;
+      patch.patch_index          = index;
+      patch.points_are_available = true;
+      patch.reference_cell       = ReferenceCells::get_hypercube<1>();
+      patch.data.reinit(4 + 2, points.size());
+      for (unsigned int j = 0; j < points.size(); ++j)
+        {
+          for (unsigned int i = 0; i < 4; ++i)
+            patch.data(i, j) = values[j][i];
+          patch.data(4, j) = points[j][0];
+          patch.data(5, j) = points[j][1];
+        }
+      return patch;
+    }
+  } // namespace
+
+  std::string
+  NetworkProblem::write_vtu(const std::string &directory, const unsigned int index,
+                            const double time, Samples samples,
+                            const std::vector<double> &vertices) const
+  {
+    // one patch per edge through all its sample points (the points of a
+    // face appear twice, once with each cell's trace: the patch has a line
+    // of length 0 there)
+    const GraphDrawing embed(net);
+    std::vector<DataOutBase::Patch<1, 2>> patches;
+    patches.reserve(samples.size() + net.vertices.size());
+    std::vector<Point<2>>              points;
+    std::vector<std::array<double, 4>> values;
+    for (unsigned int k = 0; k < samples.size(); ++k)
+      {
+        points.clear();
+        values.clear();
+        for (const auto &[x, value] : samples[k])
+          {
+            const auto p = embed(k, x);
+            points.emplace_back(p[0], p[1]);
+            values.push_back({{value, net.edges[k].flux.value(value), x, double(k + 1)}});
+          }
+        if (!points.empty())
+          patches.push_back(line_patch(points, values, patches.size()));
+        // (the samples of an edge are in its patch now)
+        Samples::value_type().swap(samples[k]);
+      }
+    // every vertex: a patch of length 0 with its value (edge number 0)
+    for (unsigned int v = 0; v < net.vertices.size(); ++v)
+      {
+        const Point<2> &p = embed.vertex(v);
+        patches.push_back(line_patch({p, p},
+                                     {{{vertices[v], 0., 0., 0.}}, {{vertices[v], 0., 0., 0.}}},
+                                     patches.size()));
+      }
+    DataOutBase::VtkFlags flags(time, index);
+    flags.print_date_and_time = false;
+    flags.compression_level   = DataOutBase::VtkFlags::best_speed;
+    const std::string name    = snapshot_name("solution-", index, ".vtu");
+    std::ofstream     out(directory + "/" + name);
+    DataOutBase::write_vtu(patches, {"u", "flux", "x_edge", "edge"}, {}, flags, out);
+    record_output_file(directory, name);
+    return name;
+  }
+
+  void
+  NetworkProblem::write_profiles(const std::string &directory, const unsigned int index,
+                                 const double time, const Samples &profile,
+                                 const std::vector<double> &vertices) const
+  {
+    if (options.profiles == Profiles::one_file)
+      {
+        std::vector<std::string> header{"edge", "x", "u", "flux"};
+        if (exact)
+          header.push_back("exact");
+        CsvWriter csv;
+        csv.open(directory + "/" + snapshot_name("profile-", index, ".csv"), header,
+                 "time = " + format_number(time) + "\n# edge: the edge's place in the graph "
+                 "(1, 2, ...), x its coordinate");
+        for (unsigned int k = 0; k < net.edges.size(); ++k)
+          for (const auto &[x, value] : profile[k])
+            {
+              std::vector<double> row{double(k + 1), x, value, net.edges[k].flux.value(value)};
+              if (exact)
+                row.push_back(exact->value(k, x, time));
+              csv.row(row);
+            }
+        return;
+      }
+    for (unsigned int k = 0; k < net.edges.size(); ++k)
+      {
+        const Edge              &e = net.edges[k];
+        std::vector<std::string> header{"x", "u", "flux"};
+        if (exact)
+          header.push_back("exact");
+        std::ostringstream comment;
+        comment << "time = " << format_number(time) << "\n# " << e.label << ": "
+                << net.describe(k) << ", length " << format_number(e.length) << ", "
+                << e.flux.describe();
+        if (net.is_star())
+          comment << "; vertex value " << format_number(vertices[0]);
+        for (const unsigned int v : {e.from, e.to})
+          if (!net.is_star() && v != free_end)
+            comment << "; " << net.vertices[v].label << " value " << format_number(vertices[v]);
+        CsvWriter csv;
+        csv.open(directory + "/" +
+                   snapshot_name("profile-", index, "-edge-" + std::to_string(k + 1) + ".csv"),
+                 header, comment.str());
+        for (const auto &[x, value] : profile[k])
+          {
+            std::vector<double> row{x, value, e.flux.value(value)};
+            if (exact)
+              row.push_back(exact->value(k, x, time));
+            csv.row(row);
+          }
+      }
+  }
+
+  SnapshotFiles
+  NetworkProblem::write_snapshot(const std::string &directory, const unsigned int index,
+                                 const double time)
+  {
+    // gathered on rank 0, which writes the files (once when the VTU and the
+    // profiles sample alike)
+    const auto vertices = vertex_values();
+    const bool vtu = options.write_vtu, profiles = options.profiles != Profiles::none;
+    Samples    vtu_samples = vtu ? gathered_sample(vtu_points()) : Samples();
+    if (profiles)
+      {
+        const bool same = vtu && vtu_points() == profile_points();
+        const Samples other = same ? Samples() : gathered_sample(profile_points());
+        if (ranks->rank() == 0)
+          write_profiles(directory, index, time, same ? vtu_samples : other, vertices);
+      }
+    SnapshotFiles files;
+    if (vtu)
+      files.pvd_entry = files.main_file = snapshot_name("solution-", index, ".vtu");
+    if (ranks->rank() == 0 && vtu)
+      write_vtu(directory, index, time, std::move(vtu_samples), vertices);
+    if (files.main_file.empty())
+      files.main_file = "profile files";
+    return files;
+  }
+
+  RunResult
+  run_network(const Graph &graph, const std::vector<EdgeData> &data,
+              const dg::DiscretizationParameters &method, const NetworkOptions &options,
+              const ExactSolution *exact, const RunParameters &params, const bool write_files,
+              const std::string &scene)
+  {
+    NetworkProblem p(graph, method, options, data, exact, scene);
+    TimeLoop       loop(p, params, write_files);
+    return loop.run();
+  }
+
+  namespace
+  {
+    /// "level" of a number of cells per unit length (log2 when a power of 2)
+    double
+    level_of(const double cells)
+    {
+      const double l = std::log2(cells);
+      return std::abs(l - std::round(l)) < 1e-12 ? std::round(l) : l;
+    }
+
+    void
+    print_study_row(const std::vector<double> &row)
+    {
+      // level, cells, dofs, steps, L1, EOC, L1 vertex, CPU s
+      std::cout << std::setw(7) << row[1] << std::setw(9) << row[2] << std::setw(10) << row[4]
+                << std::setw(8) << row[6] << std::setw(14) << std::scientific
+                << std::setprecision(5) << row[7] << std::defaultfloat << std::setw(7)
+                << std::fixed << std::setprecision(2) << row[8] << std::defaultfloat
+                << std::setw(12) << std::scientific << std::setprecision(2) << row[10]
+                << std::defaultfloat << std::setw(9) << std::fixed << std::setprecision(2)
+                << row[15] << std::defaultfloat << std::endl;
+    }
+  } // namespace
+
+  void
+  run_network_convergence(const Graph &graph, const std::vector<EdgeData> &data,
+                          const dg::DiscretizationParameters &method,
+                          const NetworkOptions &options, const ExactSolution &exact,
+                          const RunParameters &params, const std::vector<double> &cfl)
+  {
+    CsvWriter                table, rates;
+    std::vector<std::string> header{"degree", "level", "cells_per_unit_length", "dx", "dofs",
+                                    "cfl", "time_steps", "l1_error", "eoc", "l1_error_edges",
+                                    "l1_error_vertex", "l2_error", "linf_error",
+                                    "mass_balance_residual_max", "mass_step_residual_max",
+                                    "cpu_time_s", "wall_time_s"};
+    for (unsigned int k = 0; k < graph.edges.size(); ++k)
+      header.push_back("l1_error_edge_" + std::to_string(k + 1));
+    rates.open(params.directory + "/convergence-rates.csv", {"degree", "eoc_finest"},
+               "L1 error rate of the two finest meshes");
+    table.open(params.directory + "/convergence.csv", header,
+               "L1 error over all edges and the vertex cell at t = " +
+                 format_number(params.final_time) + " against " + exact.name() +
+                 "; eoc = log2(e(l-1)/e(l)) per level");
+    JsonObject errors;
+    for (unsigned int i = 0; i < params.convergence_degrees.size(); ++i)
+      {
+        dg::DiscretizationParameters d = method;
+        NetworkOptions               o = options;
+        d.degree                       = params.convergence_degrees[i];
+        d.cfl                          = cfl[i];
+        std::cout << "  degree " << d.degree << ", CFL " << format_number(d.cfl) << "\n"
+                  << "  level    cells      dofs   steps      L1 error    EOC   L1 vertex"
+                     "    CPU s"
+                  << std::endl;
+        double              e_prev = -1, h_prev = -1;
+        std::vector<double> errs, eocs;
+        for (const unsigned int cells : params.convergence_cells)
+          {
+            o.cells_per_unit_length = cells;
+            NetworkProblem  p(graph, d, o, data, &exact);
+            const RunResult r   = TimeLoop(p, params, false).run();
+            const auto      e   = p.errors(exact, r.final_time);
+            const double    eoc = e_prev > 0 ? std::log(e_prev / e.l1) /
+                                              std::log(h_prev / p.min_cell_size()) :
+                                            NAN;
+            std::vector<double> row{double(d.degree), level_of(cells), double(cells),
+                                    p.min_cell_size(), double(p.n_dofs()), d.cfl,
+                                    double(r.n_steps), e.l1, eoc, e.l1_edges, e.l1_vertex,
+                                    e.l2, e.linf,
+                                    p.mass_balance().max_residual,
+                                    p.mass_balance().max_step,
+                                    r.time_loop_cpu_s, r.wall_time_s};
+            row.insert(row.end(), e.l1_per_edge.begin(), e.l1_per_edge.end());
+            table.row(row);
+            print_study_row(row);
+            e_prev = e.l1;
+            h_prev = p.min_cell_size();
+            errs.push_back(e.l1);
+            eocs.push_back(eoc);
+          }
+        rates.row({double(d.degree), eocs.back()});
+        errors.add("degree_" + std::to_string(d.degree) + "_l1_errors", errs);
+        errors.add("degree_" + std::to_string(d.degree) + "_eoc", eocs);
+      }
+    JsonObject summary;
+    summary.add("scene", "network");
+    summary.add("mode", "convergence study");
+    summary.add("dim", 1ll);
+    summary.add("status", "completed");
+    summary.add("exact_solution", exact.name());
+    summary.add("cells_per_unit_length",
+                std::vector<double>(params.convergence_cells.begin(),
+                                    params.convergence_cells.end()));
+    summary.add_object("errors", errors);
+    summary.write(params.directory + "/summary.json");
+  }
+} // namespace granular_dg::network

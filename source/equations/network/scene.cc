@@ -1,0 +1,433 @@
+/**
+ * The `network` scene: scalar conservation laws (system.h) on a directed
+ * graph whose edges (length, flux, initial data, free-end conditions) and
+ * vertices are given in the prm (Network/Edge N, Vertex N) or in CSV files
+ * (graph_input.h), coupled by vertex control volumes (junction.h); a single
+ * run or a convergence study against one of the exact solutions of
+ * examples.h.
+ */
+
+#include <deal.II/base/mpi.h>
+
+#include <granular_dg/base/output.h>
+#include <granular_dg/base/parameters.h>
+#include <granular_dg/base/run_parameters.h>
+#include <granular_dg/base/scene.h>
+#include <granular_dg/dg/parameters.h>
+#include <granular_dg/dg/scene_entry.h>
+#include <granular_dg/equations/network/examples.h>
+#include <granular_dg/equations/network/graph_input.h>
+#include <granular_dg/equations/network/network.h>
+#include <granular_dg/equations/network/system.h>
+
+#include <algorithm>
+#include <cmath>
+#include <iostream>
+
+namespace granular_dg::network
+{
+  namespace
+  {
+    const EnumNames<Profiles>   profile_names({{Profiles::per_edge, "per_edge"},
+                                               {Profiles::one_file, "one_file"},
+                                               {Profiles::none, "none"}});
+    const EnumNames<Integrator> integrator_names({{Integrator::automatic, "auto"},
+                                                  {Integrator::forward_euler, "forward_euler"},
+                                                  {Integrator::ssprk3, "ssprk3"}});
+
+    std::string
+    exact_choices()
+    {
+      std::string s = "none|initial_data";
+      for (const auto &n : example_names())
+        s += "|" + n;
+      return s;
+    }
+
+    /// Everything the network scene reads from the prm file: the graph,
+    /// the data of its edges, the method on it, the vertex value, the exact
+    /// solution and the CFL numbers of a convergence study.
+    struct Case
+    {
+      static void
+      declare(ParameterHandler &prm);
+      void
+      parse(ParameterHandler &prm, const RunParameters &common,
+            const dg::DiscretizationParameters &method);
+
+      GraphInput                     input;
+      dg::DiscretizationParameters   method;
+      NetworkOptions                 options;
+      std::shared_ptr<ExactSolution> exact;
+      std::vector<double>            cfl;
+    };
+
+    void
+    Case::declare(ParameterHandler &prm)
+    {
+      // the paper's scheme unless the file says otherwise
+      prm.enter_subsection("Discretization");
+      prm.set("degree", "0");
+      prm.set("numerical flux", "upwind");
+      prm.leave_subsection();
+      prm.enter_subsection("Time stepping");
+      prm.set("CFL number", "0.5");
+      prm.leave_subsection();
+
+      prm.enter_subsection("Network");
+      prm.declare_entry("cells per unit length", "256", Patterns::Integer(1),
+                        "Cells per unit length of edge: the paper's grid level l is 2^l "
+                        "(dx = 2^-l); an edge of length L gets round(L * this) cells.");
+      prm.declare_entry("vertex width factor", "1", Patterns::Double(0),
+                        "Width of every vertex control volume (unless its Vertex N section "
+                        "says otherwise) in units of the paper's dx_0 = N dx/2 (the half "
+                        "cells of the N edge ends at the vertex; a loop has two). 1: the "
+                        "paper's scheme (4.1). 0: a vertex without volume whose value solves "
+                        "the discrete Rankine-Hugoniot condition sum_in F = sum_out F at "
+                        "every stage.");
+      prm.declare_entry("vertex initial value", "stationary", Patterns::Anything(),
+                        "u_0 of every vertex at t = 0 (unless its Vertex N section says "
+                        "otherwise): 'stationary' (the discrete stationary value c_0 of the "
+                        "initial edge traces, Definition 4.4) or a constant expression, "
+                        "e.g. sqrt(2/3).");
+      prm.declare_entry("edge profiles", "per_edge", profile_names.pattern(),
+                        "What a snapshot writes besides solution-NNNN.vtu: per_edge "
+                        "(profile-NNNN-edge-K.csv, one file per edge), one_file "
+                        "(profile-NNNN.csv with an edge column: for large networks) or none.");
+      prm.declare_entry("exact solution", "none", Patterns::Selection(exact_choices()),
+                        "Exact solution for the error measurement (L1 over all edges and "
+                        "the vertex cell): none, initial_data (the data are a stationary "
+                        "state), example_7_1 ... example_7_5 (Musch, Fjordholm & Risebro "
+                        "Section 7; the graph and data are checked against the example), "
+                        "smooth_linear (a smooth solution through the vertex), two_stars "
+                        "(two star vertices joined by an edge, Burgers shocks) or "
+                        "smooth_two_vertices (a smooth solution through two vertices).");
+      GraphInput::declare(prm);
+      prm.leave_subsection();
+
+      prm.enter_subsection("Time stepping");
+      prm.declare_entry("integrator", "auto", integrator_names.pattern(),
+                        "auto: forward_euler at degree 0 (exactly the paper's scheme (4.1)) "
+                        "and ssprk3 at degree >= 1.");
+      prm.leave_subsection();
+    }
+
+
+    /// The initial data as the exact solution: a stationary state.
+    class InitialData : public ExactSolution
+    {
+    public:
+      InitialData(std::vector<std::shared_ptr<Function<1>>> f, std::vector<double> vertex)
+        : f(std::move(f))
+        , vertex(std::move(vertex))
+      {}
+      double value(unsigned int k, double x, double) const override
+      {
+        return f[k]->value(Point<1>(x));
+      }
+      double vertex_value(unsigned int v, double) const override { return vertex[v]; }
+      std::string name() const override { return "initial_data"; }
+
+    private:
+      std::vector<std::shared_ptr<Function<1>>> f;
+      std::vector<double>                       vertex;
+    };
+
+    std::string
+    number(const double x)
+    {
+      return format_number(x);
+    }
+
+    /// An example's exact solution is only used for the graph and data it
+    /// belongs to: the directions, fluxes, initial data and Dirichlet data.
+    void
+    check_example(const Example &ex, const Case &c, const double final_time)
+    {
+      const std::string name  = "Network/exact solution";
+      const Graph      &graph = c.input.graph;
+      require(graph.edges.size() == ex.edges.size() && graph.vertices.size() == ex.n_vertices,
+              name, ex.name,
+              "an example whose graph is the prm's: " + ex.name + " has " +
+                std::to_string(ex.edges.size()) + " edges and " +
+                std::to_string(ex.n_vertices) + " vertices, the prm " +
+                std::to_string(graph.edges.size()) + " and " +
+                std::to_string(graph.vertices.size()));
+      require(final_time <= ex.exact->valid_until() * (1 + 1e-12), name, ex.name,
+              "an exact solution known up to the final time: " + ex.name + " is known for t <= " +
+                number(ex.exact->valid_until()));
+      for (unsigned int k = 0; k < ex.edges.size(); ++k)
+        {
+          const Edge        &e    = graph.edges[k];
+          const auto        &want = ex.edges[k];
+          const std::string &sec  = c.input.where[k];
+          const std::string  why  = ", as " + ex.name + " expects (or set Network/exact solution = none)";
+          require(e.from == want.from && e.to == want.to, sec + "direction",
+                  graph.describe(k), graph.describe_ends(want.from, want.to) + why);
+          require(e.flux.law == want.flux.law, sec + "flux", flux_law_names.name(e.flux.law),
+                  flux_law_names.name(want.flux.law) + why);
+          if (want.flux.law == FluxLaw::linear)
+            require(std::abs(e.flux.speed - want.flux.speed) < 1e-12, sec + "advection speed",
+                    e.flux.speed, number(want.flux.speed) + why);
+          if (want.flux.law == FluxLaw::traffic)
+            require(std::abs(e.flux.alpha - want.flux.alpha) < 1e-12, sec + "alpha",
+                    e.flux.alpha, number(want.flux.alpha) + why);
+          // the initial data away from the jumps, and Dirichlet inflow data
+          const auto breaks = ex.exact->breakpoints(k, 0.);
+          for (unsigned int i = 0; i <= 200; ++i)
+            {
+              const double x = e.length * i / 200.;
+              bool         near_jump = false;
+              for (const double b : breaks)
+                near_jump |= std::abs(x - b) < 1e-9;
+              if (near_jump)
+                continue;
+              const double given = c.input.data[k].initial->value(Point<1>(x));
+              const double exact = ex.exact->value(k, x, 0.);
+              require(std::abs(given - exact) <= 1e-12 * std::max(1., std::abs(exact)),
+                      sec + "initial data", c.input.initial_text[k],
+                      "the initial data of " + ex.name + " (or set Network/exact solution = "
+                      "none): at x = " + number(x) + " it gives " + number(given) +
+                        ", the example " + number(exact));
+            }
+          if (e.from == free_end && e.far_end == FarEnd::dirichlet)
+            for (const double t : {0., 0.5 * final_time, final_time})
+              {
+                c.input.data[k].far_end->set_time(t);
+                const double given = c.input.data[k].far_end->value(Point<1>(0.));
+                const double exact = ex.exact->value(k, 0., t);
+                require(std::abs(given - exact) <= 1e-12 * std::max(1., std::abs(exact)),
+                        sec + "far end data", given,
+                        "the inflow of " + ex.name + " (or set Network/exact solution = none): "
+                        "at t = " + number(t) + " it is " + number(exact));
+              }
+        }
+    }
+
+    /// Memory of a network run above the program's own (about 165 MB of
+    /// libraries), measured as peak RSS on the 224 x 224 city grid of
+    /// contrib/make_network_grid.py (100800 edges; doc/network.md, "Memory"):
+    /// per edge the graph, its data functions and the partition (one cell per
+    /// edge, degree 0); per cell and mode the state, the Runge-Kutta stage and
+    /// the last good state, and a checkpoint's gathered copy (16 cells per
+    /// edge, degrees 0 and 2); per sample point of a snapshot on rank 0 the
+    /// gathered samples and the VTU's patches and buffers, or the profiles.
+    constexpr double bytes_per_edge          = 1.1e3;
+    constexpr double bytes_per_cell          = 2.;
+    constexpr double bytes_per_mode          = 52.;
+    constexpr double vtu_bytes_per_point     = 115.;
+    constexpr double profile_bytes_per_point = 16.;
+
+    /// The cells of every edge at `cells` per unit length, as NetworkProblem
+    /// makes them (round(L * cells), at least one), in double: counted
+    /// before anything is allocated, without overflow.
+    std::vector<double>
+    cell_counts(const Graph &graph, const double cells)
+    {
+      std::vector<double> n;
+      for (const Edge &e : graph.edges)
+        n.push_back(std::max(1., std::round(e.length * cells)));
+      return n;
+    }
+
+    /// An InputError when the network needs more memory than this MPI rank
+    /// has (available_memory_per_rank()), refused before anything is
+    /// allocated as the other scenes' meshes are: the edges and cells of a
+    /// rank (at least the longest edge: the partition keeps edges whole) and,
+    /// on rank 0, a snapshot of the whole network. It names the number of
+    /// cells per unit length (of a convergence study: Convergence/cells), or
+    /// the graph file when its edges take most of the memory.
+    void
+    require_network_fits(const Case &c, const RunParameters &common)
+    {
+      const bool study = common.convergence;
+      const std::vector<unsigned int> degrees =
+        study ? common.convergence_degrees : std::vector<unsigned int>{c.method.degree};
+      const double cells =
+        study ? double(*std::max_element(common.convergence_cells.begin(),
+                                         common.convergence_cells.end())) :
+                c.options.cells_per_unit_length;
+      const unsigned int degree = *std::max_element(degrees.begin(), degrees.end());
+      const auto         n      = cell_counts(c.input.graph, cells);
+      double             total  = 0;
+      for (const double x : n)
+        total += x;
+      const double ranks = Utilities::MPI::job_supports_mpi() ?
+                             Utilities::MPI::n_mpi_processes(MPI_COMM_WORLD) :
+                             1.;
+      const double per_cell   = bytes_per_cell + bytes_per_mode * (degree + 1);
+      const double edge_bytes = std::ceil(n.size() / ranks) * bytes_per_edge;
+      const double cell_bytes =
+        std::max(total / ranks, *std::max_element(n.begin(), n.end())) * per_cell;
+      const bool   snapshots  = !study && !common.benchmark.enabled &&
+                             (c.options.write_vtu || c.options.profiles != Profiles::none);
+      const double points     = c.method.profile_points > 0 ? std::max(2u, c.method.profile_points) :
+                                                            std::max(2u, degree + 1);
+      const double snapshot_bytes =
+        !snapshots ? 0. :
+                     total * points *
+                       ((c.options.write_vtu ? vtu_bytes_per_point : 0.) +
+                        (c.options.profiles != Profiles::none ? profile_bytes_per_point : 0.));
+      const double needed = edge_bytes + cell_bytes + snapshot_bytes;
+      // the smallest over the ranks: they all refuse, or none
+      const double available = Utilities::MPI::job_supports_mpi() ?
+                                 Utilities::MPI::min(available_memory_per_rank(), MPI_COMM_WORLD) :
+                                 available_memory_per_rank();
+      if (available <= 0. || needed <= available)
+        return;
+      const auto &files    = c.input.graph.files;
+      const bool  by_edges = edge_bytes > cell_bytes && !files.empty();
+      require(false,
+              by_edges ? files.front().parameter :
+              study    ? std::string("Convergence/cells") :
+                         std::string("Network/cells per unit length"),
+              by_edges ? files.front().name : format_number(cells),
+              "the run needs about " + format_bytes(needed) + " per MPI rank (" +
+                format_number(n.size()) + " edges at ~" + format_bytes(bytes_per_edge) +
+                " each, " + format_number(total) + " cells of degree " +
+                std::to_string(degree) + " at ~" + format_number(per_cell) + " bytes each" +
+                (snapshots ? std::string(", snapshots included") : std::string()) +
+                "), more than the " + format_bytes(available) +
+                " available (MemAvailable): use fewer cells per unit length, fewer edges or a "
+                "lower degree, or run on more machines (MPI ranks)");
+    }
+
+    /// One warning line on stderr (rank 0) when an edge is so short that its
+    /// cells are over 10 times narrower than 1 / (cells per unit length): the
+    /// CFL step follows the narrowest cell, so the whole network steps that
+    /// much more often (an edge shorter than half a cell gets one cell of its
+    /// length).
+    void
+    warn_of_short_edges(const Case &c, const double cells)
+    {
+      const Graph &graph = c.input.graph;
+      const auto   n     = cell_counts(graph, cells);
+      const double dx    = 1. / cells;
+      unsigned int narrowest = 0, count = 0;
+      for (unsigned int k = 0; k < n.size(); ++k)
+        {
+          const double h = graph.edges[k].length / n[k];
+          if (h < 0.1 * dx)
+            ++count;
+          if (h < graph.edges[narrowest].length / n[narrowest])
+            narrowest = k;
+        }
+      if (count == 0 || Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) != 0)
+        return;
+      const Edge  &e = graph.edges[narrowest];
+      const double h = e.length / n[narrowest];
+      std::cerr << "granular_dg: warning: " << e.label << " (" << c.input.where[narrowest]
+                << "length = " << format_number(e.length) << ") has cells of width "
+                << format_number(h) << ", " << format_number(dx / h)
+                << " times narrower than 1/(Network/cells per unit length) = "
+                << format_number(dx) << ": the time step of the whole network shrinks by "
+                << "that factor"
+                << (count > 1 ? " (" + std::to_string(count - 1) +
+                                  " more edges are over 10 times narrower too)" :
+                                std::string())
+                << std::endl;
+    }
+
+    void
+    Case::parse(ParameterHandler &prm, const RunParameters &common,
+                const dg::DiscretizationParameters &method)
+    {
+      if (common.convergence && Utilities::MPI::n_mpi_processes(MPI_COMM_WORLD) > 1)
+        throw InputError("the network's convergence study (Convergence/enabled = true) runs on "
+                         "one MPI rank: run it without mpirun, or set Convergence/enabled = false "
+                         "for a single run on several ranks");
+      require(method.scheme == dg::TimeScheme::ssp_rk3, "Time stepping/scheme",
+              dg::time_scheme_name(method.scheme),
+              "ssp_rk3 (the network's vertex coupling runs with Euler or SSP-RK3 stages; "
+              "Time stepping/integrator chooses between them)");
+      require(method.skip_tolerance == 0, "Time stepping/skip tolerance", method.skip_tolerance,
+              "0 here: the network computes every cell of every edge in every step (skipping "
+              "quiet cells is built in the DG solver of the 1D scenes, not for the network)");
+      require(method.engine != dg::Engine::matrix_free, "Discretization/engine", "matrix_free",
+              "auto or line here: the network's edges run in one line engine (EdgeLines)");
+      Case &c          = *this;
+      c.method         = method;
+      c.options.flux   = numerical_flux_names.parse("Discretization/numerical flux", method.flux);
+      c.options.write_vtu = common.write_vtu;
+      common.require_format_fits(1);  // the edges are 1D
+
+      prm.enter_subsection("Time stepping");
+      c.options.integrator =
+        integrator_names.parse("Time stepping/integrator", prm.get("integrator"));
+      prm.leave_subsection();
+
+      prm.enter_subsection("Network");
+      c.options.cells_per_unit_length = prm.get_integer("cells per unit length");
+      c.options.profiles =
+        profile_names.parse("Network/edge profiles", prm.get("edge profiles"));
+      const std::string exact_name = prm.get("exact solution");
+      c.input.parse(prm);
+      prm.leave_subsection();
+      // before any edge is discretised (below for initial_data, then by run())
+      require_network_fits(c, common);
+
+      if (exact_name == "initial_data")
+        {
+          std::vector<std::shared_ptr<Function<1>>> f;
+          for (const auto &d : c.input.data)
+            f.push_back(d.initial);
+          // the vertex values of a stationary state: given, or c_0 of the data
+          NetworkProblem probe(c.input.graph, c.method, c.options, c.input.data);
+          probe.initialize();
+          c.exact = std::make_shared<InitialData>(f, probe.vertex_values());
+        }
+      else if (exact_name != "none")
+        {
+          const Example ex = make_example(exact_name);
+          check_example(ex, c, common.final_time);
+          c.exact = ex.exact;
+          for (unsigned int k = 0; k < c.input.data.size(); ++k)
+            c.input.data[k].initial_breakpoints = ex.exact->breakpoints(k, 0.);
+        }
+
+      c.cfl = common.convergence_cfl;
+      if (c.cfl.empty())
+        c.cfl.assign(common.convergence_degrees.size(), method.cfl);
+      // forward Euler is unstable with DG of degree >= 1 at every CFL number
+      for (const unsigned int p : common.convergence ? common.convergence_degrees :
+                                                       std::vector<unsigned int>{method.degree})
+        require(c.options.integrator != Integrator::forward_euler || p == 0,
+                "Time stepping/integrator", "forward_euler",
+                "auto or ssprk3 at degree " + std::to_string(p) +
+                  " (forward Euler is unstable with DG of degree >= 1)");
+    }
+
+    void
+    run(const RunParameters &common, const dg::DiscretizationParameters &, const Case &c)
+    {
+      if (common.convergence)
+        require(static_cast<bool>(c.exact), "Network/exact solution", "none",
+                "an exact solution: a convergence study measures errors");
+      // a study: its finest level, which costs the most
+      warn_of_short_edges(c, common.convergence ?
+                               double(*std::max_element(common.convergence_cells.begin(),
+                                                        common.convergence_cells.end())) :
+                               c.options.cells_per_unit_length);
+      {
+        const auto    n     = edge_cells(c.input.graph, c.options.cells_per_unit_length);
+        unsigned long cells = 0;
+        for (const unsigned int x : n)
+          cells += x;
+        require_reasonable_snapshot_count(common, snapshot_bytes(cells, c.method, c.options));
+      }
+      begin_output(common);
+      if (common.convergence)
+        run_network_convergence(c.input.graph, c.input.data, c.method, c.options, *c.exact,
+                                common, c.cfl);
+      else
+        run_network(c.input.graph, c.input.data, c.method, c.options, c.exact.get(), common,
+                    true);
+    }
+
+    const RegisterScene registration(dg::scene_entry<Case>(
+      "network",
+      "scalar conservation laws u_t + f_k(u)_x = 0 on a network of edges and vertex control "
+      "volumes (linear, Burgers, traffic fluxes)",
+      numerical_flux_names.selection(), "", run));
+  } // namespace
+} // namespace granular_dg::network
