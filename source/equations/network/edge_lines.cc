@@ -497,13 +497,15 @@ namespace granular_dg::network
   {
     VA x[nm];
     load_cells<nm>(u + index(e, c), x);
-    // the neighbours' means, the outer states beyond the edge's ends
+    // the neighbours' means: the batch's own, shifted by one lane, and at
+    // the batch's ends the next cells or the outer states beyond the edge
     VA avg_m, avg_p;
-    for (unsigned int l = 0; l < W; ++l)
+    avg_m[0]     = c > 0 ? u[index(e, c - 1)] : outer[2 * e];
+    avg_p[W - 1] = c + W < cells[e] ? u[index(e, c + W)] : outer[2 * e + 1];
+    for (unsigned int l = 1; l < W; ++l)
       {
-        const unsigned int cell = c + l;
-        avg_m[l] = cell > 0 ? u[index(e, cell - 1)] : outer[2 * e];
-        avg_p[l] = cell + 1 < cells[e] ? u[index(e, cell + 1)] : outer[2 * e + 1];
+        avg_m[l]     = x[0][l - 1];
+        avg_p[l - 1] = x[0][l];
       }
     VA dp = avg_p - x[0], dm = x[0] - avg_m;
     // at an outflow end the missing difference does not limit

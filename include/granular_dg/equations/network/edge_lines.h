@@ -43,12 +43,15 @@ namespace granular_dg::network
    * cell count and cell size) and its flux law; there is no mesh object.
    *
    * The discretisation is dg::LineOperator's (p + 2 Gauss points, the
-   * physics' numerical flux at faces, SIMD batches of cells inside an edge,
-   * a fused Runge-Kutta stage update), dg::ModalLimiter's TVB limiter with its
-   * trouble indicators and dg::SubcellBlending, per edge as one such line:
-   * the same operations in the same order, so each edge's values are those of
-   * a line engine on that edge alone. The two end faces of an edge take
-   * their outer state from outer_state(): the vertex value, far-end data or
+   * physics' numerical flux at faces, a fused Runge-Kutta stage update),
+   * dg::ModalLimiter's TVB limiter with its trouble indicators and
+   * dg::SubcellBlending, per edge as one such line: the same operations in
+   * the same order, so each edge's values are those of a line engine on that
+   * edge alone (to round-off where the compiler contracts differently). Cells
+   * go through the stage, the CFL scan and the limiter in SIMD batches of W
+   * (the native width); a batch may end an edge, its last lane then taking
+   * the flux through the edge's end. The two end faces of an edge take their
+   * outer state from outer_state(): the vertex value, far-end data or
    * (outflow) the inner trace.
    */
   class EdgeLines
