@@ -126,14 +126,6 @@ namespace granular_dg::network
       }
   }
 
-  std::size_t
-  EdgeLines::memory_consumption() const
-  {
-    const auto n = [](const auto &v) { return v.capacity() * sizeof(v[0]); };
-    return n(laws) + n(cells) + n(first) + n(h) + n(end_kind) + n(outer) + n(raw_alpha) +
-           n(alpha) + n(flags) + n(examined);
-  }
-
   double
   EdgeLines::trace(const double *u, const unsigned int e, const unsigned int side) const
   {

@@ -418,7 +418,7 @@ namespace granular_dg::network
   }
 
   double
-  NetworkProblem::far_end_inflow(const double time, const NetworkState &s) const
+  NetworkProblem::far_end_inflow(const NetworkState &s) const
   {
     double sum = 0;
     for (const unsigned int k : ranks->edges())
@@ -429,14 +429,12 @@ namespace granular_dg::network
           {
             if ((in ? e.from : e.to) != free_end)
               continue;
-            const double x     = in ? 0. : e.length;
-            const double inside = trace(k, !in, s);
-            double       ghost  = inside;
-            if (e.far_end == FarEnd::dirichlet)
-              {
-                data[k].far_end->set_time(time);
-                ghost = data[k].far_end->value(Point<1>(x));
-              }
+            // the far-end data as the edge's end face sees it (set_end_states())
+            const unsigned int side   = in ? 0 : 1;
+            const double       inside = trace(k, side, s);
+            const double       ghost  = e.far_end == FarEnd::dirichlet ?
+                                          lines->outer_state(local(k), side) :
+                                          inside;
             sum += in ? e.flux.numerical_flux(options.flux, ghost, inside) :
                         -e.flux.numerical_flux(options.flux, inside, ghost);
           }
@@ -463,8 +461,8 @@ namespace granular_dg::network
         vertex_u0[v]        = u0;
         rates[v]            = junctions[v].rate(traces, u0);
       }
-    stage_inflow.push_back(far_end_inflow(time, src));
     set_end_states(time);
+    stage_inflow.push_back(far_end_inflow(src));
     return rates;
   }
 

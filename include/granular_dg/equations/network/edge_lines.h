@@ -111,7 +111,6 @@ namespace granular_dg::network
     /// cells whose last stage blended in finite volumes
     unsigned int n_blended_cells() const;
 
-    std::size_t memory_consumption() const;
 
   private:
     struct Law;

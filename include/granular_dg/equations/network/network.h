@@ -254,7 +254,9 @@ namespace granular_dg::network
     /// the value the edges see at vertex v: u_0, or the balance of the
     /// traces for a vertex without volume
     double vertex_state(unsigned int v, const NetworkState &s, double t) const;
-    double far_end_inflow(double time, const NetworkState &s) const;
+    /// inflow - outflow through the free ends of this rank's edges, with the
+    /// far-end data of the last set_end_states()
+    double far_end_inflow(const NetworkState &s) const;
     void   post_stage(NetworkState &s, double stage_time);
     /// Inadmissible unless s is finite (and, at degree 0, in the range of
     /// the step).
