@@ -13,9 +13,11 @@
 #include <unistd.h>
 
 #include <cerrno>
+#include <cstdlib>
 #include <cstring>
 #include <iostream>
 #include <string>
+#include <utility>
 
 namespace
 {
@@ -30,6 +32,41 @@ namespace
     return (slash == std::string::npos ? std::string(".") : self.substr(0, slash)) +
            "/granular_dg_engine";
   }
+
+  /// True when a process manager (mpirun, srun, a PMIx server) started us.
+  bool
+  started_by_process_manager()
+  {
+    for (const char *name : {"OMPI_COMM_WORLD_SIZE", "PMIX_RANK", "PMI_RANK", "PMI_SIZE",
+                             "SLURM_STEP_ID", "HYDRA_CONTROL_FD"})
+      if (std::getenv(name) != nullptr)
+        return true;
+    return false;
+  }
+
+  /**
+   * A run without mpirun is an MPI singleton. Open MPI 4.1 then starts a
+   * daemon (orted) for it and probes every point-to-point layer, UCX among
+   * them: 0.40 s of a bare MPI_Init + MPI_Finalize on this project's machines,
+   * against 0.05 s as an isolated singleton with the ob1 layer (doc/
+   * performance.md, "Build and start-up"). Isolated singletons all take the
+   * same job id, so nothing may live in their shared session directory: one
+   * rank needs only the self transport, and MPI-IO's shared file pointers
+   * (which nothing here uses) stay out of the "sm" component's session files.
+   * A setting the user made wins; other MPI implementations ignore the names.
+   */
+  void
+  start_singleton_quickly()
+  {
+    if (started_by_process_manager())
+      return;
+    for (const auto &[name, value] : {std::pair{"OMPI_MCA_ess_singleton_isolated", "1"},
+                                      std::pair{"OMPI_MCA_pml", "ob1"},
+                                      std::pair{"OMPI_MCA_btl", "self"},
+                                      std::pair{"OMPI_MCA_sharedfp", "^sm"}})
+      ::setenv(name, value, /*overwrite=*/0);
+  }
+
 } // namespace
 
 int
@@ -59,6 +96,7 @@ main(int argc, char **argv)
       return 0;
     }
   const std::string engine = engine_path(argv[0]);
+  start_singleton_quickly();
   ::execv(engine.c_str(), argv);
   std::cerr << "granular_dg: internal error: cannot start the engine " << engine << ": "
             << std::strerror(errno) << std::endl;
