@@ -3,6 +3,7 @@
 #include <granular_dg/base/errors.h>
 #include <granular_dg/base/input_path.h>
 #include <granular_dg/base/output.h>
+#include <granular_dg/base/parameter_binding.h>
 #include <granular_dg/base/run_parameters.h>
 
 #include <algorithm>
@@ -35,203 +36,186 @@ namespace granular_dg
 
   namespace
   {
-    void
-    declare_output(ParameterHandler &prm)
+    /// Unsigned integers of a comma-separated list (checked by its pattern).
+    std::vector<unsigned int>
+    unsigned_list(const std::string &text)
     {
-      prm.enter_subsection("Output");
-      prm.declare_entry("directory", "output", Patterns::Anything(),
-                        "Where everything of the run goes (created if missing).");
-      prm.declare_entry("overwrite", "false", Patterns::Bool(),
-                        "Replace the results of a previous run in the directory (the files "
-                        "its manifest lists); without it such a directory is refused.");
-      prm.declare_entry("output times", "", Patterns::Anything(),
-                        "Comma-separated times of the snapshots (besides t = 0 and the "
-                        "final time). Empty: use the output interval.");
-      prm.declare_entry("output interval", "0", Patterns::Double(0),
-                        "Snapshot every this much time when no output times are "
-                        "given (0: only the initial and final state).");
-      prm.declare_entry("write vtu", "true", Patterns::Bool(),
-                        "Write field snapshots (in Output/format) and their index; "
-                        "false: CSV/JSON output only.");
-      prm.declare_entry("format", "vtu", Patterns::Selection("vtu|hdf5"),
-                        "Snapshot format: vtu (solution-NNNN.vtu, one .vtu per rank and a "
-                        ".pvtu under MPI, indexed by solution.pvd) or hdf5 (2D only: "
-                        "solution-NNNN.h5 written by all ranks into one file through "
-                        "parallel HDF5, indexed by solution.xdmf; doc/program.md).");
-      prm.declare_entry("progress interval", "5", Patterns::Double(0),
-                        "Seconds of wall time between progress lines (0: none).");
-      prm.leave_subsection();
-    }
-
-    void
-    declare_checkpoint(ParameterHandler &prm)
-    {
-      prm.enter_subsection("Checkpoint");
-      prm.declare_entry("every steps", "0", Patterns::Integer(0),
-                        "Write a checkpoint (Output/directory/checkpoints/step-N.ckpt, the "
-                        "newest two are kept) every this many steps (0: not by steps).");
-      prm.declare_entry("every seconds", "600", Patterns::Double(0),
-                        "Write a checkpoint every this many seconds of wall time (0: not by "
-                        "time). A SIGINT or SIGTERM always writes one before the run stops.");
-      prm.declare_entry("resume", "false", Patterns::Bool(),
-                        "Continue the run in Output/directory from its newest valid "
-                        "checkpoint (also granular_dg --resume CASE.prm), appending to its "
-                        "solution.pvd and timeseries.csv. The parameters must be those of "
-                        "that run, except Time stepping/final time and max steps, "
-                        "Checkpoint/* and Output/progress interval.");
-      prm.leave_subsection();
-    }
-
-    void
-    declare_modes(ParameterHandler &prm)
-    {
-      prm.enter_subsection("Convergence");
-      prm.declare_entry("enabled", "false", Patterns::Bool(),
-                        "Run a convergence study against the exact solution instead "
-                        "of a single run.");
-      prm.declare_entry("degrees", "0,1,2,3,4", Patterns::List(Patterns::Integer(0, 4)),
-                        "Degrees of the study.");
-      prm.declare_entry("cells", "16,32,64,128", Patterns::List(Patterns::Integer(1)),
-                        "Numbers of cells of the study, coarse to fine, per direction of "
-                        "the mesh (every direction is refined) or as the scene's doc/ page "
-                        "defines them.");
-      prm.declare_entry("CFL numbers", "", Patterns::Anything(),
-                        "One CFL number per entry of Convergence/degrees (comma-separated); "
-                        "empty: Time stepping/CFL number for all.");
-      prm.leave_subsection();
-
-      prm.enter_subsection("Benchmark");
-      prm.declare_entry("enabled", "false", Patterns::Bool(),
-                        "Time the steps instead of running to the final time (also "
-                        "granular_dg --benchmark CASE.prm): warm-up steps, then repetitions "
-                        "of a block of steps, restarted from the initial state before they "
-                        "would pass the final time; writes benchmark.json (CPU time per step, "
-                        "DoF-stage updates per second per core, the phases of a step) and "
-                        "nothing else. doc/performance.md.");
-      prm.declare_entry("repetitions", "5", Patterns::Integer(1),
-                        "Number of timed blocks (min and median are reported).");
-      prm.declare_entry("steps", "0", Patterns::Integer(0),
-                        "Steps per block; 0: doubled from 1 until a block takes the "
-                        "minimum time.");
-      prm.declare_entry("minimum time", "0.3", Patterns::Double(0),
-                        "CPU seconds a calibrated block lasts at least.");
-      prm.declare_entry("warm-up steps", "2", Patterns::Integer(0),
-                        "Untimed steps before the calibration.");
-      prm.leave_subsection();
-    }
-
-    void
-    parse_modes(ParameterHandler &prm, RunParameters &p)
-    {
-      prm.enter_subsection("Convergence");
-      p.convergence = prm.get_bool("enabled");
-      for (const auto &s : Utilities::split_string_list(prm.get("degrees")))
-        p.convergence_degrees.push_back(Utilities::string_to_int(s));
-      for (const auto &s : Utilities::split_string_list(prm.get("cells")))
-        p.convergence_cells.push_back(Utilities::string_to_int(s));
-      const std::string cfl_text = prm.get("CFL numbers");
-      prm.leave_subsection();
-      for (const auto &s : Utilities::split_string_list(cfl_text, ','))
-        {
-          double v = 0;
-          try
-            {
-              v = Utilities::string_to_double(s);
-            }
-          catch (...)
-            {
-              require(false, "Convergence/CFL numbers", cfl_text, "comma-separated numbers");
-            }
-          require(v > 0 && v <= 1, "Convergence/CFL numbers", cfl_text, "numbers in (0, 1]");
-          p.convergence_cfl.push_back(v);
-        }
-      if (p.convergence)
-        require(p.convergence_cells.size() >= 2 && !p.convergence_degrees.empty(),
-                "Convergence/cells", p.convergence_cells.size(),
-                "at least two mesh sizes and one degree for a study");
-      require(!p.convergence || p.convergence_cfl.empty() ||
-                p.convergence_cfl.size() == p.convergence_degrees.size(),
-              "Convergence/CFL numbers", cfl_text,
-              "one number per entry of Convergence/degrees (" +
-                std::to_string(p.convergence_degrees.size()) + ")");
-
-      prm.enter_subsection("Benchmark");
-      p.benchmark.enabled      = prm.get_bool("enabled");
-      p.benchmark.repetitions  = prm.get_integer("repetitions");
-      p.benchmark.steps        = prm.get_integer("steps");
-      p.benchmark.min_time     = prm.get_double("minimum time");
-      p.benchmark.warmup_steps = prm.get_integer("warm-up steps");
-      prm.leave_subsection();
-      require(!(p.benchmark.enabled && p.convergence), "Benchmark/enabled", "true",
-              "false when Convergence/enabled is true");
+      std::vector<unsigned int> out;
+      for (const auto &s : Utilities::split_string_list(text))
+        out.push_back(Utilities::string_to_int(s));
+      return out;
     }
   } // namespace
 
   void
   RunParameters::declare(ParameterHandler &prm)
   {
-    prm.enter_subsection("Time stepping");
-    prm.declare_entry("final time", "1", Patterns::Double(),
-                      "End of the simulation. Must be > 0.");
-    prm.declare_entry("max steps", "0", Patterns::Integer(0),
-                      "Stop when the step counter reaches this number, writing a "
-                      "checkpoint and summary.json (status 'stopped at max steps'); "
-                      "continue with --resume. For runs split into jobs, and restart "
-                      "tests. 0: no limit.");
-    prm.leave_subsection();
-    declare_output(prm);
-    declare_checkpoint(prm);
-    declare_modes(prm);
+    ParameterBinding b(prm, ParameterBinding::Mode::declare);
+    RunParameters().bind(b);
   }
 
   void
   RunParameters::parse(ParameterHandler &prm)
   {
-    prm.enter_subsection("Time stepping");
-    final_time = prm.get_double("final time");
-    max_steps  = prm.get_integer("max steps");
-    prm.leave_subsection();
-    require(final_time > 0, "Time stepping/final time", final_time, "must be > 0");
+    {
+      ParameterBinding b(prm, ParameterBinding::Mode::read);
+      bind(b);
+    }
+    record_parameters(prm);
+  }
 
-    prm.enter_subsection("Output");
-    directory         = prm.get("directory");
-    overwrite         = prm.get_bool("overwrite");
-    const std::string output_times_text = prm.get("output times");
-    output_times      = parse_doubles(output_times_text, "Output/output times");
-    output_interval   = prm.get_double("output interval");
-    write_vtu         = prm.get_bool("write vtu");
-    hdf5              = prm.get("format") == "hdf5";
-    progress_interval = prm.get_double("progress interval");
-    prm.leave_subsection();
-    for (const double t : output_times)
-      require(t > 0 && t <= final_time, "Output/output times", output_times_text,
-              "times in (0, final time = " + format_number(final_time) + "]");
+  void
+  RunParameters::bind(ParameterBinding &b)
+  {
+    b.section("Time stepping");
+    b.add("final time", final_time, Patterns::Double(), "End of the simulation. Must be > 0.")
+      .check([](const double t) { return t > 0; }, "must be > 0");
+    b.add("max steps", max_steps, Patterns::Integer(0),
+          "Stop when the step counter reaches this number, writing a checkpoint and "
+          "summary.json (status 'stopped at max steps'); continue with --resume. For runs "
+          "split into jobs, and restart tests. 0: no limit.");
+    bind_output(b);
+    bind_modes(b);
+    bind_checkpoint(b);
+  }
 
-    parse_modes(prm, *this);
+  void
+  RunParameters::bind_output(ParameterBinding &b)
+  {
+    b.section("Output");
+    b.add("directory", directory, Patterns::Anything(),
+          "Where everything of the run goes (created if missing).");
+    b.add("overwrite", overwrite, Patterns::Bool(),
+          "Replace the results of a previous run in the directory (the files its manifest "
+          "lists); without it such a directory is refused.");
+    b.add("output times", "", Patterns::Anything(),
+          "Comma-separated times of the snapshots (besides t = 0 and the final time). Empty: "
+          "use the output interval.",
+          [this](const std::string &text) {
+            output_times = parse_doubles(text, "Output/output times");
+            for (const double t : output_times)
+              require(t > 0 && t <= final_time, "Output/output times", text,
+                      "times in (0, final time = " + format_number(final_time) + "]");
+          });
+    b.add("output interval", output_interval, Patterns::Double(0),
+          "Snapshot every this much time when no output times are given (0: only the initial "
+          "and final state).");
+    b.add("write vtu", write_vtu, Patterns::Bool(),
+          "Write field snapshots (in Output/format) and their index; false: CSV/JSON output "
+          "only.");
+    b.add("format", "vtu", Patterns::Selection("vtu|hdf5"),
+          "Snapshot format: vtu (solution-NNNN.vtu, one .vtu per rank and a .pvtu under MPI, "
+          "indexed by solution.pvd) or hdf5 (2D only: solution-NNNN.h5 written by all ranks "
+          "into one file through parallel HDF5, indexed by solution.xdmf; doc/program.md).",
+          [this](const std::string &text) { hdf5 = text == "hdf5"; });
+    b.add("progress interval", progress_interval, Patterns::Double(0),
+          "Seconds of wall time between progress lines (0: none).");
+  }
 
-    prm.enter_subsection("Checkpoint");
-    checkpoint_steps   = prm.get_integer("every steps");
-    checkpoint_seconds = prm.get_double("every seconds");
-    resume             = prm.get_bool("resume");
-    prm.leave_subsection();
-    require(!(resume && overwrite), "Checkpoint/resume", "true",
-            "false when Output/overwrite is true (resume continues the run in the "
-            "directory, overwrite discards it)");
-    require(!(resume && convergence), "Checkpoint/resume", "true",
-            "false when Convergence/enabled is true (a study has no checkpoints)");
-    require(!(resume && benchmark.enabled), "Checkpoint/resume", "true",
-            "false in benchmark mode");
+  void
+  RunParameters::bind_modes(ParameterBinding &b)
+  {
+    b.section("Convergence");
+    b.add("enabled", convergence, Patterns::Bool(),
+          "Run a convergence study against the exact solution instead of a single run.");
+    b.add("degrees", "0,1,2,3,4", Patterns::List(Patterns::Integer(0, 4)),
+          "Degrees of the study.",
+          [this](const std::string &text) { convergence_degrees = unsigned_list(text); });
+    b.add("cells", "16,32,64,128", Patterns::List(Patterns::Integer(1)),
+          "Numbers of cells of the study, coarse to fine, per direction of the mesh (every "
+          "direction is refined) or as the scene's doc/ page defines them.",
+          [this](const std::string &text) {
+            convergence_cells = unsigned_list(text);
+            require(!convergence ||
+                      (convergence_cells.size() >= 2 && !convergence_degrees.empty()),
+                    "Convergence/cells",
+                    convergence_cells.size(), "at least two mesh sizes and one degree for a study");
+          });
+    b.add("CFL numbers", "", Patterns::Anything(),
+          "One CFL number per entry of Convergence/degrees (comma-separated); empty: Time "
+          "stepping/CFL number for all.",
+          [this](const std::string &text) { read_convergence_cfl(text); });
 
+    b.section("Benchmark");
+    b.add("enabled", benchmark.enabled, Patterns::Bool(),
+          "Time the steps instead of running to the final time (also granular_dg --benchmark "
+          "CASE.prm): warm-up steps, then repetitions of a block of steps, restarted from the "
+          "initial state before they would pass the final time; writes benchmark.json (CPU "
+          "time per step, DoF-stage updates per second per core, the phases of a step) and "
+          "nothing else. doc/performance.md.")
+      .check([this](const bool on) { return !(on && convergence); },
+             "false when Convergence/enabled is true");
+    b.add("repetitions", benchmark.repetitions, Patterns::Integer(1),
+          "Number of timed blocks (min and median are reported).");
+    b.add("steps", benchmark.steps, Patterns::Integer(0),
+          "Steps per block; 0: doubled from 1 until a block takes the minimum time.");
+    b.add("minimum time", benchmark.min_time, Patterns::Double(0),
+          "CPU seconds a calibrated block lasts at least.");
+    b.add("warm-up steps", benchmark.warmup_steps, Patterns::Integer(0),
+          "Untimed steps before the calibration.");
+  }
+
+  void
+  RunParameters::read_convergence_cfl(const std::string &text)
+  {
+    convergence_cfl.clear();
+    for (const auto &s : Utilities::split_string_list(text, ','))
+      {
+        double v = 0;
+        try
+          {
+            v = Utilities::string_to_double(s);
+          }
+        catch (...)
+          {
+            require(false, "Convergence/CFL numbers", text, "comma-separated numbers");
+          }
+        require(v > 0 && v <= 1, "Convergence/CFL numbers", text, "numbers in (0, 1]");
+        convergence_cfl.push_back(v);
+      }
+    require(!convergence || convergence_cfl.empty() ||
+              convergence_cfl.size() == convergence_degrees.size(),
+            "Convergence/CFL numbers", text,
+            "one number per entry of Convergence/degrees (" +
+              std::to_string(convergence_degrees.size()) + ")");
+  }
+
+  void
+  RunParameters::bind_checkpoint(ParameterBinding &b)
+  {
+    b.section("Checkpoint");
+    b.add("every steps", checkpoint_steps, Patterns::Integer(0),
+          "Write a checkpoint (Output/directory/checkpoints/step-N.ckpt, the newest two are "
+          "kept) every this many steps (0: not by steps).");
+    b.add("every seconds", checkpoint_seconds, Patterns::Double(0),
+          "Write a checkpoint every this many seconds of wall time (0: not by time). A SIGINT "
+          "or SIGTERM always writes one before the run stops.");
+    b.add("resume", resume, Patterns::Bool(),
+          "Continue the run in Output/directory from its newest valid checkpoint (also "
+          "granular_dg --resume CASE.prm), appending to its solution.pvd and timeseries.csv. "
+          "The parameters must be those of that run, except Time stepping/final time and max "
+          "steps, Checkpoint/* and Output/progress interval.")
+      .check([this](const bool r) { return !(r && overwrite); },
+             "false when Output/overwrite is true (resume continues the run in the directory, "
+             "overwrite discards it)")
+      .check([this](const bool r) { return !(r && convergence); },
+             "false when Convergence/enabled is true (a study has no checkpoints)")
+      .check([this](const bool r) { return !(r && benchmark.enabled); },
+             "false in benchmark mode");
+  }
+
+  void
+  RunParameters::record_parameters(ParameterHandler &prm)
+  {
     // the parameters of the run, without the switch that resumes it: a
     // resumed run's parameters.prm is the uninterrupted run's
-    const bool resuming = resume;
     prm.enter_subsection("Checkpoint");
     prm.set("resume", false);
     prm.leave_subsection();
     std::ostringstream text;
     prm.print_parameters(text, ParameterHandler::ShortPRM);
     prm.enter_subsection("Checkpoint");
-    prm.set("resume", resuming);
+    prm.set("resume", resume);
     prm.leave_subsection();
     parameters_text = text.str();
     parameters      = flatten_parameters(parameters_text);

@@ -1,10 +1,12 @@
 #include <granular_dg/base/errors.h>
 #include <granular_dg/base/output.h>
+#include <granular_dg/base/parameter_binding.h>
 #include <granular_dg/base/parameters.h>
 #include <granular_dg/dg/parameters.h>
 
 #include <algorithm>
 #include <cmath>
+#include <iostream>
 
 namespace granular_dg::dg
 {
@@ -114,228 +116,212 @@ namespace granular_dg::dg
               " with DG of degree p = 0..4: " + table + ")");
   }
 
+  namespace
+  {
+    const EnumNames<TroubleIndicator> indicator_names(
+      {{TroubleIndicator::everywhere, "everywhere"},
+       {TroubleIndicator::modal_energy, "modal_energy"},
+       {TroubleIndicator::kxrcf, "kxrcf"},
+       {TroubleIndicator::modal_energy_neighbours, "modal_energy_neighbours"}});
+
+    EnumNames<LimiterType>
+    limiter_names(const std::string &physics_variables)
+    {
+      return EnumNames<LimiterType>(
+        {{LimiterType::none, "none"},
+         {LimiterType::componentwise, "componentwise"},
+         {LimiterType::characteristic, "characteristic"},
+         {LimiterType::physics_variables,
+          physics_variables.empty() ? std::string("(none)") : physics_variables}});
+    }
+
+    /// a warning, not a refusal: --set Limiter/indicator=everywhere on a case
+    /// that sets a threshold is how the limiter in every cell is compared
+    void
+    warn_unused_threshold(const double threshold)
+    {
+      static bool warned = false;
+      if (warned || (Utilities::MPI::job_supports_mpi() &&
+                     Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) != 0))
+        return;
+      std::cerr << "granular_dg: warning: Limiter/indicator threshold = "
+                << format_number(threshold)
+                << " has no effect with Limiter/indicator = everywhere (every cell is "
+                   "examined; a threshold selects the cells an indicator flags)"
+                << std::endl;
+      warned = true;
+    }
+  } // namespace
+
   void
   DiscretizationParameters::declare(ParameterHandler &prm, const std::string &fluxes,
                                     const std::string &physics_variables)
   {
-    prm.enter_subsection("Discretization");
-    prm.declare_entry("degree", "2", Patterns::Integer(0, 4),
-                      "Polynomial degree of the FE_DGQLegendre space (0 = finite "
-                      "volumes). Allowed: 0 to 4.");
-    prm.declare_entry("numerical flux", "local_lax_friedrichs", Patterns::Selection(fluxes),
-                      "Numerical flux on faces: local_lax_friedrichs (Rusanov) or one the "
-                      "physics offers (doc/ of the scene). Allowed: " + fluxes + ".");
-    prm.declare_entry("engine", "auto", engine_names.pattern(),
-                      "The operator: matrix_free (deal.II MatrixFree cell/face kernels, "
-                      "any dimension, MPI) or line (a lean 1D kernel of the same "
-                      "discretisation, serial, several times faster in 1D); auto: line "
-                      "for serial 1D runs, matrix_free otherwise.");
-    prm.leave_subsection();
-
-    prm.enter_subsection("Time stepping");
-    prm.declare_entry("CFL number", "0.2", Patterns::Double(),
-                      "Courant number dt * sum_d(lambda_max / h_d). SSP-RK3 with DG "
-                      "of degree p is stable up to about 1/(2p+1). Allowed: (0, 1].");
-    prm.declare_entry("check stability limit", "true", Patterns::Bool(),
-                      "Refuse a CFL number above the scheme's linear stability limit for "
-                      "the degree (SSP-RK3: 1.256, 0.4095, 0.2097, 0.13, 0.0896 for p = "
-                      "0-4). false: run anyway, for stability studies of where the "
-                      "method fails.");
-    prm.declare_entry("scheme", "ssp_rk3", time_scheme_names.pattern(),
-                      "Explicit Runge-Kutta scheme: ssp_rk3 (Shu-Osher, 3 stages, order "
-                      "3; the only one with limiters and stage operations) or deal.II's "
-                      "low-storage schemes lsrk_S_O (S stages, order O), more stable per "
-                      "stage, for unlimited runs. Allowed: " +
-                        time_scheme_names.selection() + ".");
-    prm.declare_entry("skip tolerance", "0", Patterns::Double(0),
-                      "Skip the cells that cannot change: after a step, a cell whose values "
-                      "all moved by at most this times the largest |value| of their "
-                      "component so far is quiet, and the next step (of the same size) "
-                      "computes only the cells within reach of a cell that was not; when "
-                      "all are quiet, the run is at rest and steps of that size are not "
-                      "computed (steps of another size, such as those that land on output "
-                      "times, are). The results differ from the full computation by about "
-                      "10 times this, of each component's largest value (doc/engine.md). "
-                      "For scenes whose operator does not depend on time, 1D, line engine, "
-                      "ssp_rk3. 0: compute every cell. Allowed: [0, 1e-14].");
-    prm.declare_entry("skip cells at rest", "false", Patterns::Bool(),
-                      "2D engine: leave out the cells at the physics' rest state and out "
-                      "of a step's reach of the others, and the faces between them (doc/"
-                      "engine.md, \"Cells at rest\"). Cells on a boundary with data are "
-                      "always computed. For physics with a rest state (nonlinear "
-                      "elasticity), without subcell blending.");
-    prm.declare_entry("rest tolerance", "0", Patterns::Double(0),
-                      "With skip cells at rest: a cell is at rest when every Legendre "
-                      "coefficient of each component i is at most this times the largest "
-                      "|coefficient| of i in the domain now. The results agree with the "
-                      "full computation to about this, of each component's largest value; "
-                      "bit for bit at 0 (exactly at rest). Allowed: [0, 1e-10].");
-    prm.leave_subsection();
-
-    const std::string limiters = limiter_selection(physics_variables);
-    prm.enter_subsection("Limiter");
-    prm.declare_entry("scheme", "none", Patterns::Selection(limiters),
-                      "TVB minmod limiter on the Legendre modes after every stage: "
-                      "none, componentwise (conserved variables), characteristic "
-                      "(eigenvectors of the flux Jacobian at the cell average)" +
-                        (physics_variables.empty() ?
-                           std::string(".") :
-                           " or " + physics_variables +
-                             " (variables the physics names, continuous across material "
-                             "interfaces)."));
-    prm.declare_entry("TVB constant", "0", Patterns::Double(0),
-                      "M of the TVB minmod: slopes with |slope| <= M h^2 are not "
-                      "limited (0 = TVD minmod).");
-    prm.declare_entry("indicator", "everywhere",
-                      Patterns::Selection("everywhere|modal_energy|kxrcf|"
-                                          "modal_energy_neighbours"),
-                      "Which cells the limiter examines: everywhere (every cell), "
-                      "modal_energy (only the cells whose indicator variable, named by the "
-                      "physics, has too much energy in its highest Legendre modes: the "
-                      "indicator of Hennemann et al. 2021), kxrcf (only the cells with "
-                      "large jumps of the indicator variable across their faces: "
-                      "Krivodonova et al. 2004), or modal_energy_neighbours (the cells "
-                      "modal_energy flags and their face neighbours: a shock flagged at its "
-                      "foot is limited above it too); doc/engine.md.");
-    prm.declare_entry("indicator threshold", "0", Patterns::Double(0),
-                      "modal_energy(_neighbours): the share of the energy in the highest "
-                      "modes above which a cell is flagged, in (0, 1); kxrcf: the bound on the "
-                      "normalised face jumps; 0: automatic (0.5 10^(-1.8 (p+1)^(1/4)) for "
-                      "degree p, 1 for kxrcf).");
-    prm.declare_entry("subcell blending", "false", Patterns::Bool(),
-                      "Blend the DG update of every stage with a first-order finite-volume "
-                      "update on the (p + 1)^dim subcells of each cell, by a factor alpha "
-                      "from the modal energy of the indicator variable (Hennemann et al. "
-                      "2021; 0 in smooth cells); conservative. Independent of Limiter/scheme "
-                      "(both may act). Line engine (serial 1D runs and the edges of "
-                      "networks) and the 2D engine (Cartesian meshes); doc/engine.md.");
-    prm.declare_entry("blending maximum", "0.5", Patterns::Double(0, 1),
-                      "The largest blending factor alpha_max, in (0, 1] (1: pure "
-                      "finite volumes in the cells the indicator flags most).");
-    prm.leave_subsection();
-
-    prm.enter_subsection("Output");
-    prm.declare_entry("profile points per cell", "0", Patterns::Integer(0, 20),
-                      "Sample points per cell in the 1D profile-NNNN.csv, equally "
-                      "spaced with both end points (1: the cell centre; 0: degree+1, "
-                      "at least 2).");
-    prm.declare_entry("write modes", "false", Patterns::Bool(),
-                      "1D: also write modes-NNNN.csv, the Legendre coefficients of every "
-                      "cell (x_left, h, then per component the modes 0..p): the exact "
-                      "discrete solution, usable as a reference solution of another run "
-                      "(Exact solution/reference file of the scenes that offer it).");
-    prm.leave_subsection();
+    ParameterBinding         b(prm, ParameterBinding::Mode::declare);
+    DiscretizationParameters defaults;
+    defaults.bind(b, RunParameters(), fluxes, physics_variables);
   }
 
   void
   DiscretizationParameters::parse(ParameterHandler &prm, const RunParameters &run,
                                   const std::string &physics_variables)
   {
-    prm.enter_subsection("Discretization");
-    degree = prm.get_integer("degree");
-    flux   = prm.get("numerical flux");
-    engine = engine_names.parse("Discretization/engine", prm.get("engine"));
-    prm.leave_subsection();
+    ParameterBinding b(prm, ParameterBinding::Mode::read);
+    bind(b, run, "", physics_variables);
+  }
 
-    prm.enter_subsection("Time stepping");
-    cfl                   = prm.get_double("CFL number");
-    check_stability_limit = prm.get_bool("check stability limit");
-    scheme = time_scheme_names.parse("Time stepping/scheme", prm.get("scheme"));
-    skip_tolerance = prm.get_double("skip tolerance");
-    skip_at_rest   = prm.get_bool("skip cells at rest");
-    rest_tolerance = prm.get_double("rest tolerance");
-    prm.leave_subsection();
-    require(skip_tolerance <= max_skip_tolerance, "Time stepping/skip tolerance",
-            skip_tolerance,
-            "must be in [0, " + format_number(max_skip_tolerance) +
-              "]: a larger tolerance takes slowly moving cells for quiet ones, and the "
-              "results no longer agree with the full computation to 1e-12 "
-              "(doc/engine.md, \"Skipping quiet cells\")");
-    // a cell left out is within the tolerance of rest (no drift adds up)
-    require(rest_tolerance <= 1e-10, "Time stepping/rest tolerance", rest_tolerance,
-            "must be in [0, 1e-10]: the results agree with the full computation to about "
-            "the tolerance (doc/engine.md, \"Cells at rest\")");
-    // (a stability study, check stability limit = false, may go beyond 1)
-    // (SSP-RK3: at most 1, also for the network's forward Euler at degree 0)
-    const double largest =
-      scheme == TimeScheme::ssp_rk3 ? 1. : std::max(1., cfl_limit(scheme, 0));
-    require(cfl > 0 && (cfl <= largest || !check_stability_limit), "Time stepping/CFL number",
-            cfl,
-            scheme == TimeScheme::ssp_rk3 ?
-              "must be in (0, 1] (SSP-RK3 DG of degree p is stable up to about 1/(2p+1))" :
-              "must be in (0, " + format_number(largest) + "] (the stability limits of " +
-                time_scheme_name(scheme) + " are in doc/program.md)");
+  void
+  DiscretizationParameters::bind(ParameterBinding &b, const RunParameters &run,
+                                 const std::string &fluxes, const std::string &physics_variables)
+  {
+    b.section("Discretization");
+    b.add("degree", degree, Patterns::Integer(0, 4),
+          "Polynomial degree of the FE_DGQLegendre space (0 = finite volumes). Allowed: 0 to 4.");
+    b.add("numerical flux", flux, Patterns::Selection(fluxes),
+          "Numerical flux on faces: local_lax_friedrichs (Rusanov) or one the physics offers "
+          "(doc/ of the scene). Allowed: " + fluxes + ".");
+    b.add("engine", engine, engine_names,
+          "The operator: matrix_free (deal.II MatrixFree cell/face kernels, any dimension, "
+          "MPI) or line (a lean 1D kernel of the same discretisation, serial, several times "
+          "faster in 1D); auto: line for serial 1D runs, matrix_free otherwise.");
+    bind_time_stepping(b, run);
+    bind_limiter(b, run, physics_variables);
 
-    prm.enter_subsection("Limiter");
-    limiter_name = prm.get("scheme");
-    tvb_M        = prm.get_double("TVB constant");
-    indicator    = EnumNames<TroubleIndicator>({{TroubleIndicator::everywhere, "everywhere"},
-                                             {TroubleIndicator::modal_energy, "modal_energy"},
-                                             {TroubleIndicator::kxrcf, "kxrcf"},
-                                             {TroubleIndicator::modal_energy_neighbours,
-                                              "modal_energy_neighbours"}})
-                  .parse("Limiter/indicator", prm.get("indicator"));
-    indicator_threshold = prm.get_double("indicator threshold");
-    require((indicator != TroubleIndicator::modal_energy &&
-             indicator != TroubleIndicator::modal_energy_neighbours) ||
-              indicator_threshold < 1,
-            "Limiter/indicator threshold", indicator_threshold,
-            "must be in [0, 1) with indicator = modal_energy or modal_energy_neighbours (a "
-            "share of the energy; 0 = automatic)");
-    // a warning, not a refusal: --set Limiter/indicator=everywhere on a case
-    // that sets a threshold is how the limiter in every cell is compared
-    static bool warned = false;
-    if (indicator == TroubleIndicator::everywhere && indicator_threshold != 0 && !warned &&
-        (!Utilities::MPI::job_supports_mpi() ||
-         Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) == 0))
-      {
-        std::cerr << "granular_dg: warning: Limiter/indicator threshold = "
-                  << format_number(indicator_threshold)
-                  << " has no effect with Limiter/indicator = everywhere (every cell is "
-                     "examined; a threshold selects the cells an indicator flags)"
-                  << std::endl;
-        warned = true;
-      }
-    if (prm.get_bool("subcell blending"))
-      {
-        blending_max = prm.get_double("blending maximum");
-        require(blending_max > 0, "Limiter/blending maximum", blending_max,
-                "must be in (0, 1] with subcell blending = true");
-        require(degree > 0 || run.convergence, "Limiter/subcell blending", "true",
-                "false at Discretization/degree = 0 (a cell of degree 0 is its own only "
-                "subcell: blending would change nothing)");
-      }
-    prm.leave_subsection();
-    const EnumNames<LimiterType> limiter_names(
-      {{LimiterType::none, "none"},
-       {LimiterType::componentwise, "componentwise"},
-       {LimiterType::characteristic, "characteristic"},
-       {LimiterType::physics_variables,
-        physics_variables.empty() ? std::string("(none)") : physics_variables}});
-    limiter = limiter_names.parse("Limiter/scheme", limiter_name);
-    require(scheme == TimeScheme::ssp_rk3 || limiter == LimiterType::none,
-            "Time stepping/scheme", time_scheme_name(scheme),
-            "ssp_rk3 only with Limiter/scheme = " + limiter_name +
-              " (a limiter needs a scheme of convex combinations of Euler steps; "
-              "the lsrk schemes run without limiter)");
+    b.section("Output");
+    b.add("profile points per cell", profile_points, Patterns::Integer(0, 20),
+          "Sample points per cell in the 1D profile-NNNN.csv, equally spaced with both end "
+          "points (1: the cell centre; 0: degree+1, at least 2).");
+    b.add("write modes", write_modes, Patterns::Bool(),
+          "1D: also write modes-NNNN.csv, the Legendre coefficients of every cell (x_left, h, "
+          "then per component the modes 0..p): the exact discrete solution, usable as a "
+          "reference solution of another run (Exact solution/reference file of the scenes "
+          "that offer it).");
+  }
 
-    prm.enter_subsection("Output");
-    profile_points = prm.get_integer("profile points per cell");
-    write_modes    = prm.get_bool("write modes");
-    prm.leave_subsection();
-
+  void
+  DiscretizationParameters::bind_time_stepping(ParameterBinding &b, const RunParameters &run)
+  {
+    b.section("Time stepping");
+    b.add("scheme", scheme, time_scheme_names,
+          "Explicit Runge-Kutta scheme: ssp_rk3 (Shu-Osher, 3 stages, order 3; the only one "
+          "with limiters and stage operations) or deal.II's low-storage schemes lsrk_S_O (S "
+          "stages, order O), more stable per stage, for unlimited runs. Allowed: " +
+            time_scheme_names.selection() + ".");
+    b.add("check stability limit", check_stability_limit, Patterns::Bool(),
+          "Refuse a CFL number above the scheme's linear stability limit for the degree "
+          "(SSP-RK3: 1.256, 0.4095, 0.2097, 0.13, 0.0896 for p = 0-4). false: run anyway, for "
+          "stability studies of where the method fails.");
+    // (a stability study, check stability limit = false, may go beyond 1;
+    // SSP-RK3: at most 1, also for the network's forward Euler at degree 0)
+    const double largest = scheme == TimeScheme::ssp_rk3 ? 1. : std::max(1., cfl_limit(scheme, 0));
+    b.add("CFL number", cfl, Patterns::Double(),
+          "Courant number dt * sum_d(lambda_max / h_d). SSP-RK3 with DG of degree p is stable "
+          "up to about 1/(2p+1). Allowed: (0, 1].")
+      .check([&](const double c) { return c > 0 && (c <= largest || !check_stability_limit); },
+             scheme == TimeScheme::ssp_rk3 ?
+               "must be in (0, 1] (SSP-RK3 DG of degree p is stable up to about 1/(2p+1))" :
+               "must be in (0, " + format_number(largest) + "] (the stability limits of " +
+                 time_scheme_name(scheme) + " are in doc/program.md)");
     // above the linear stability limit the run would blow up after a few
     // hundred steps (or, with a limiter, silently lose accuracy); a
     // convergence study needs it for every degree of the study
-    if (!check_stability_limit)
-      return;
-    if (!run.convergence)
+    if (b.reading() && check_stability_limit && !run.convergence)
       require_stable_cfl(cfl, scheme, degree, "Time stepping/CFL number");
-    else
+    if (b.reading() && check_stability_limit && run.convergence)
       for (unsigned int i = 0; i < run.convergence_degrees.size(); ++i)
         require_stable_cfl(for_study(run, i).cfl, scheme, run.convergence_degrees[i],
                            run.convergence_cfl.empty() ? "Time stepping/CFL number" :
                                                          "Convergence/CFL numbers");
+    b.add("skip tolerance", skip_tolerance, Patterns::Double(0),
+          "Skip the cells that cannot change: after a step, a cell whose values all moved by "
+          "at most this times the largest |value| of their component so far is quiet, and the "
+          "next step (of the same size) computes only the cells within reach of a cell that "
+          "was not; when all are quiet, the run is at rest and steps of that size are not "
+          "computed (steps of another size, such as those that land on output times, are). "
+          "The results differ from the full computation by about 10 times this, of each "
+          "component's largest value (doc/engine.md). For scenes whose operator does not "
+          "depend on time, 1D, line engine, ssp_rk3. 0: compute every cell. Allowed: [0, "
+          "1e-14].")
+      .check([](const double t) { return t <= max_skip_tolerance; },
+             "must be in [0, " + format_number(max_skip_tolerance) +
+               "]: a larger tolerance takes slowly moving cells for quiet ones, and the "
+               "results no longer agree with the full computation to 1e-12 (doc/engine.md, "
+               "\"Skipping quiet cells\")");
+    b.add("skip cells at rest", skip_at_rest, Patterns::Bool(),
+          "2D engine: leave out the cells at the physics' rest state and out of a step's "
+          "reach of the others, and the faces between them (doc/engine.md, \"Cells at "
+          "rest\"). Cells on a boundary with data are always computed. For physics with a "
+          "rest state (nonlinear elasticity), without subcell blending.");
+    // a cell left out is within the tolerance of rest (no drift adds up)
+    b.add("rest tolerance", rest_tolerance, Patterns::Double(0),
+          "With skip cells at rest: a cell is at rest when every Legendre coefficient of each "
+          "component i is at most this times the largest |coefficient| of i in the domain "
+          "now. The results agree with the full computation to about this, of each "
+          "component's largest value; bit for bit at 0 (exactly at rest). Allowed: [0, "
+          "1e-10].")
+      .check([](const double t) { return t <= 1e-10; },
+             "must be in [0, 1e-10]: the results agree with the full computation to about the "
+             "tolerance (doc/engine.md, \"Cells at rest\")");
+  }
+
+  void
+  DiscretizationParameters::bind_limiter(ParameterBinding &b, const RunParameters &run,
+                                         const std::string &physics_variables)
+  {
+    const auto limiters = limiter_names(physics_variables);
+    b.section("Limiter");
+    b.add("scheme", limiter_name, Patterns::Selection(limiter_selection(physics_variables)),
+          "TVB minmod limiter on the Legendre modes after every stage: none, componentwise "
+          "(conserved variables), characteristic (eigenvectors of the flux Jacobian at the "
+          "cell average)" +
+            (physics_variables.empty() ?
+               std::string(".") :
+               " or " + physics_variables +
+                 " (variables the physics names, continuous across material interfaces)."));
+    if (b.reading())
+      limiter = limiters.parse("Limiter/scheme", limiter_name);
+    if (b.reading())
+      require(scheme == TimeScheme::ssp_rk3 || limiter == LimiterType::none,
+              "Time stepping/scheme", time_scheme_name(scheme),
+              "ssp_rk3 only with Limiter/scheme = " + limiter_name +
+                " (a limiter needs a scheme of convex combinations of Euler steps; the lsrk "
+                "schemes run without limiter)");
+    b.add("TVB constant", tvb_M, Patterns::Double(0),
+          "M of the TVB minmod: slopes with |slope| <= M h^2 are not limited (0 = TVD "
+          "minmod).");
+    b.add("indicator", indicator, indicator_names,
+          "Which cells the limiter examines: everywhere (every cell), modal_energy (only the "
+          "cells whose indicator variable, named by the physics, has too much energy in its "
+          "highest Legendre modes: the indicator of Hennemann et al. 2021), kxrcf (only the "
+          "cells with large jumps of the indicator variable across their faces: Krivodonova "
+          "et al. 2004), or modal_energy_neighbours (the cells modal_energy flags and their "
+          "face neighbours: a shock flagged at its foot is limited above it too); "
+          "doc/engine.md.");
+    const bool share = indicator == TroubleIndicator::modal_energy ||
+                       indicator == TroubleIndicator::modal_energy_neighbours;
+    b.add("indicator threshold", indicator_threshold, Patterns::Double(0),
+          "modal_energy(_neighbours): the share of the energy in the highest modes above "
+          "which a cell is flagged, in (0, 1); kxrcf: the bound on the normalised face jumps; "
+          "0: automatic (0.5 10^(-1.8 (p+1)^(1/4)) for degree p, 1 for kxrcf).")
+      .check([&](const double t) { return !share || t < 1; },
+             "must be in [0, 1) with indicator = modal_energy or modal_energy_neighbours (a "
+             "share of the energy; 0 = automatic)");
+    if (b.reading() && indicator == TroubleIndicator::everywhere && indicator_threshold != 0)
+      warn_unused_threshold(indicator_threshold);
+    b.add("subcell blending", subcell_blending, Patterns::Bool(),
+          "Blend the DG update of every stage with a first-order finite-volume update on the "
+          "(p + 1)^dim subcells of each cell, by a factor alpha from the modal energy of the "
+          "indicator variable (Hennemann et al. 2021; 0 in smooth cells); conservative. "
+          "Independent of Limiter/scheme (both may act). Line engine (serial 1D runs and the "
+          "edges of networks) and the 2D engine (Cartesian meshes); doc/engine.md.")
+      .check([&](const bool on) { return !on || degree > 0 || run.convergence; },
+             "false at Discretization/degree = 0 (a cell of degree 0 is its own only subcell: "
+             "blending would change nothing)");
+    b.add("blending maximum", blending_maximum, Patterns::Double(0, 1),
+          "The largest blending factor alpha_max, in (0, 1] (1: pure finite volumes in the "
+          "cells the indicator flags most).")
+      .check([&](const double a) { return !subcell_blending || a > 0; },
+             "must be in (0, 1] with subcell blending = true");
   }
 
   DiscretizationParameters

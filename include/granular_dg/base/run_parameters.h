@@ -10,6 +10,8 @@
 
 namespace granular_dg
 {
+  class ParameterBinding;
+
   using namespace dealii;
 
   /**
@@ -26,7 +28,7 @@ namespace granular_dg
 
     /// Checkpoint/: every so many steps and wall seconds (0: not), resume
     unsigned long checkpoint_steps   = 0;
-    double        checkpoint_seconds = 0.;
+    double        checkpoint_seconds = 600.;
     bool          resume             = false;
     /// the parameters of the run (parameters.prm, and what a checkpoint
     /// must match when resumed)
@@ -55,10 +57,18 @@ namespace granular_dg
 
     BenchmarkParameters benchmark;
 
+    /// Every entry, declared once (bind()).
     static void
     declare(ParameterHandler &prm);
+
+    /// Read and check every entry (bind()) and record the run's parameters.
     void
     parse(ParameterHandler &prm);
+
+    /// The entries, each with its field, pattern, documentation and checks
+    /// (ParameterBinding).
+    void
+    bind(ParameterBinding &b);
 
     /// Where a scene writes files of its own: the output directory of a
     /// single run, "" in convergence studies and benchmarks (which write
@@ -73,6 +83,18 @@ namespace granular_dg
     /// the interval, always ending with the final time.
     std::vector<double>
     output_schedule(double start_time) const;
+
+  private:
+    void
+    bind_output(ParameterBinding &b);
+    void
+    bind_modes(ParameterBinding &b);
+    void
+    bind_checkpoint(ParameterBinding &b);
+    void
+    read_convergence_cfl(const std::string &text);
+    void
+    record_parameters(ParameterHandler &prm);
   };
 
   /// The one-line message of a snapshot count that cannot be meant

@@ -2,6 +2,7 @@
 
 #include <deal.II/base/parameter_handler.h>
 
+#include <granular_dg/base/parameter_binding.h>
 #include <granular_dg/base/run_parameters.h>
 #include <granular_dg/dg/limiter.h>
 #include <granular_dg/dg/operator.h>
@@ -45,24 +46,46 @@ namespace granular_dg::dg
     /// (0: the automatic one of the degree)
     TroubleIndicator indicator           = TroubleIndicator::everywhere;
     double           indicator_threshold = 0.;
-    /// Limiter/subcell blending: the largest blending factor (0: off)
-    double           blending_max        = 0.;
+    /// Limiter/subcell blending and Limiter/blending maximum
+    bool             subcell_blending    = false;
+    double           blending_maximum    = 0.5;
+    /// the largest blending factor of subcell blending (0: off)
+    double
+    blending_max() const
+    {
+      return subcell_blending ? blending_maximum : 0.;
+    }
     unsigned int profile_points = 0;
     bool         write_modes    = false;
 
+    /// Every entry of the method, declared once (bind()).
     static void
     declare(ParameterHandler &prm, const std::string &fluxes,
             const std::string &physics_variables = "");
 
-    /// Parse and check (the CFL number against the stability limit of every
-    /// degree the run or its convergence study uses).
+    /// Read and check every entry (bind(); the CFL number against the
+    /// stability limit of every degree the run or its convergence study uses).
     void
     parse(ParameterHandler &prm, const RunParameters &run,
           const std::string &physics_variables = "");
 
+    /// The entries, each with its field, pattern, documentation and checks
+    /// (ParameterBinding): sections Discretization, Time stepping, Limiter
+    /// and Output.
+    void
+    bind(ParameterBinding &b, const RunParameters &run, const std::string &fluxes,
+         const std::string &physics_variables);
+
     /// The method of the i-th degree of a convergence study (its CFL number).
     DiscretizationParameters
     for_study(const RunParameters &run, unsigned int i) const;
+
+  private:
+    void
+    bind_time_stepping(ParameterBinding &b, const RunParameters &run);
+    void
+    bind_limiter(ParameterBinding &b, const RunParameters &run,
+                 const std::string &physics_variables);
   };
 
   /// The size of one snapshot of a DG field (the VTU and, in 1D, the CSV

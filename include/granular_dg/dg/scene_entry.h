@@ -1,5 +1,6 @@
 #pragma once
 
+#include <granular_dg/base/parameter_binding.h>
 #include <granular_dg/base/run_parameters.h>
 #include <granular_dg/base/scene.h>
 #include <granular_dg/dg/parameters.h>
@@ -13,9 +14,9 @@ namespace granular_dg::dg
    * The registry entry of a DG scene: its parameters are the run's
    * (RunParameters), the method's (DiscretizationParameters with the
    * numerical fluxes and limiting variables its physics offers) and its own
-   * (SceneParameters: static declare(prm), then parse(prm, run, method), which
-   * may also set defaults of the sections before it); run gets all three,
-   * parsed and checked:
+   * (SceneParameters::bind(ParameterBinding &, run, method): every entry once,
+   * with its field, pattern, documentation and checks); run gets all three,
+   * read and checked:
    *
    *   const RegisterScene registration(dg::scene_entry<MyParameters>(
    *     "name", "description", my_flux_names.selection(), "", run));
@@ -33,7 +34,8 @@ namespace granular_dg::dg
     s.declare     = [=](ParameterHandler &prm) {
       RunParameters::declare(prm);
       DiscretizationParameters::declare(prm, fluxes, physics_variables);
-      SceneParameters::declare(prm);
+      ParameterBinding b(prm, ParameterBinding::Mode::declare);
+      SceneParameters().bind(b, RunParameters(), DiscretizationParameters());
     };
     s.run = [=](ParameterHandler &prm) {
       RunParameters common;
@@ -41,7 +43,10 @@ namespace granular_dg::dg
       DiscretizationParameters method;
       method.parse(prm, common, physics_variables);
       SceneParameters p;
-      p.parse(prm, common, method);
+      {
+        ParameterBinding b(prm, ParameterBinding::Mode::read);
+        p.bind(b, common, method);
+      }
       run(common, method, p);
     };
     return s;

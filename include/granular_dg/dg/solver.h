@@ -161,7 +161,8 @@ namespace granular_dg::dg
   /// An InputError naming Time stepping/scheme when the scene has a stage
   /// operation (SceneHooks::stage_operation) the scheme cannot carry: only
   /// SSP-RK3 can; and one naming Time stepping/skip tolerance when the run
-  /// cannot skip cells. Scenes call it before they write anything; Solver again.
+  /// cannot skip cells. The one check of the method against the scene: a
+  /// scene calls it once its scene data is built, before it writes anything.
   template <int dim, typename Physics>
   void
   require_scheme_fits(const DiscretizationParameters &method, const SceneData<dim, Physics> &scene);

@@ -123,11 +123,10 @@ namespace granular_dg::dg
     op->initialize_vector(last_good);
     limiter.reinit(dof_handler, solution);
     limiter.set_indicator(method.indicator, method.indicator_threshold);
-    if (method.blending_max > 0)
-      AssertThrow(op->set_subcell_blending(method.blending_max), ExcInternalError());
+    if (method.blending_max() > 0)
+      AssertThrow(op->set_subcell_blending(method.blending_max()), ExcInternalError());
     quadrature.reinit(limiter.layout());
     hooks.set_all_resuming(run.resume && write_files);
-    require_scheme_fits(method, scene);
     if (method.scheme != TimeScheme::ssp_rk3)
       low_storage = std::make_unique<LowStorageRK>(method.scheme);
     if (method.skip_at_rest)
@@ -182,7 +181,7 @@ namespace granular_dg::dg
              "of the line engine)";
     if (!internal::zero_is_rest_state<Physics>)
       return std::string("a physics with a rest state (") + Physics::name + " declares none)";
-    if (method.blending_max > 0)
+    if (method.blending_max() > 0)
       return "Limiter/subcell blending = false";
     if (const auto op = HookList<dim>(scene.hooks).stage_operation_on_all_cells(); !op.empty())
       return "stage operations that act cell by cell (this run has " + op + ")";
@@ -204,7 +203,7 @@ namespace granular_dg::dg
       if (const std::string why = why_cells_cannot_be_skipped(method, scene); !why.empty())
         require(false, "Time stepping/skip tolerance", method.skip_tolerance,
                 "0 here: skipping quiet cells needs " + why);
-    require(method.blending_max == 0 || runs_line_engine(dim, method.engine) || dim == 2,
+    require(method.blending_max() == 0 || runs_line_engine(dim, method.engine) || dim == 2,
             "Limiter/subcell blending", "true",
             "false here: subcell blending is built in the line engine (serial 1D runs) and the "
             "2D engine");
@@ -242,8 +241,8 @@ namespace granular_dg::dg
     i.method.add("engine", op->engine_name());
     i.method.add("numerical_flux", method.flux);
     i.method.add("limiter", method.limiter_name);
-    if (method.blending_max > 0)
-      i.method.add("subcell_blending", method.blending_max);
+    if (method.blending_max() > 0)
+      i.method.add("subcell_blending", method.blending_max());
     i.method.add("scheme", time_scheme_name(method.scheme));
     i.bytes_per_snapshot =
       snapshot_bytes(i.n_cells, method.degree, dim,
@@ -476,7 +475,7 @@ namespace granular_dg::dg
     header.push_back("troubled_cells");
     if (method.indicator != TroubleIndicator::everywhere)
       header.push_back("flagged_cells");
-    if (method.blending_max > 0)
+    if (method.blending_max() > 0)
       header.push_back("blended_cells");
     if (scene.exact)
       {
@@ -498,7 +497,7 @@ namespace granular_dg::dg
     row.push_back(Utilities::MPI::sum(troubled, solution.get_mpi_communicator()));
     if (method.indicator != TroubleIndicator::everywhere)
       row.push_back(Utilities::MPI::sum(limiter.n_flagged(), solution.get_mpi_communicator()));
-    if (method.blending_max > 0)
+    if (method.blending_max() > 0)
       row.push_back(Utilities::MPI::sum(op->n_blended_cells(), solution.get_mpi_communicator()));
     if (scene.exact)
       {

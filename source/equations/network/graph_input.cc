@@ -8,6 +8,7 @@
 #include <granular_dg/base/checkpoint.h>
 #include <granular_dg/base/errors.h>
 #include <granular_dg/base/input_path.h>
+#include <granular_dg/base/parameter_binding.h>
 #include <granular_dg/base/parameters.h>
 #include <granular_dg/equations/network/graph_input.h>
 
@@ -16,6 +17,7 @@
 #include <fstream>
 #include <map>
 #include <sstream>
+#include <tuple>
 
 namespace granular_dg::network
 {
@@ -251,124 +253,135 @@ namespace granular_dg::network
       require(x && std::isfinite(*x), where + name, text, "a finite number");
       return *x;
     }
+
+    /// an Edge N section that describes an edge
+    bool
+    used(const EdgeSection &e)
+    {
+      return e.direction != "none" || e.from != "none" || e.to != "none";
+    }
+
+    void
+    bind_edge_section(ParameterBinding &b, const unsigned int i, EdgeSection &e)
+    {
+      b.section("Network/" + section("Edge", i));
+      b.add("direction", e.direction, direction_names.pattern(),
+            "Shorthand for a star graph: how the edge meets Vertex 1: in (it ends there, x = "
+            "length), out (it starts there, x = 0), loop (a roundabout: both ends there) or "
+            "none (use from/to, or no such edge).");
+      b.add("from", e.from, Patterns::Anything(),
+            "The vertex at x = 0: a number N (Vertex N), free (a free end: far end data or "
+            "outflow), or none (no such edge, or direction is used).");
+      b.add("to", e.to, Patterns::Anything(),
+            "The vertex at x = length: N, free, loop (the from vertex: a roundabout) or none.");
+      b.add("length", e.length, Patterns::Double(),
+            "Length L of the edge; its coordinate x runs over [0, L] in the direction of the "
+            "edge. Must be > 0.")
+        .check([](const double l) { return l > 0; }, "must be > 0");
+      b.add("flux", e.flux, flux_law_names.pattern(),
+            "Flux: linear (f = a u), burgers (f = u^2/2) or traffic (f = alpha f0(u/alpha), "
+            "f0(u) = 4u(1-u)).");
+      b.add("advection speed", e.advection_speed, Patterns::Double(), "a of the linear flux.");
+      b.add("alpha", e.alpha, Patterns::Double(),
+            "alpha of the traffic flux (capacity alpha at u = alpha/2). Must be > 0.");
+      b.add("initial data", e.initial_data, Patterns::Anything(),
+            "u(x, 0) as an expression in x (edge coordinate) and pi, e.g. if(x < 0.5, 2, "
+            "sqrt(2)).");
+      b.add("far end", e.far_end, far_end_names.pattern(),
+            "Condition at a free end: dirichlet (exterior state = far end data: inflow) or "
+            "outflow (exterior = interior state, the paper's zero Neumann).");
+      b.add("far end data", e.far_end_data, Patterns::Anything(),
+            "Dirichlet state at a free end, an expression in t and pi.");
+    }
   } // namespace
 
   void
-  GraphInput::declare(ParameterHandler &prm)
+  GraphInput::bind(ParameterBinding &b)
   {
-    prm.declare_entry("graph file", "", Patterns::Anything(),
-                      "A CSV edge list for large networks (instead of Edge N sections), "
-                      "relative to this parameter file: a header line, then one edge per "
-                      "line: id,from,to,length,flux[,parameter[,initial[,far_end[,far_end_data]]]] "
-                      "(from/to: a vertex id or free; to may be loop; parameter: a of linear, "
-                      "alpha of traffic; initial: a number or an expression in x without commas; "
-                      "far_end: dirichlet or outflow; far_end_data: a number or an expression "
-                      "in t). Lines starting with # are comments.");
-    prm.declare_entry("vertex file", "", Patterns::Anything(),
-                      "With a graph file: a CSV vertex list, id,x,y[,width_factor[,initial_value]] "
-                      "(positions for the drawing; width factor and initial value as in "
-                      "Vertex N). Without it the vertices are those the edges name.");
+    b.section("Network");
+    b.add("graph file", graph_file, Patterns::Anything(),
+          "A CSV edge list for large networks (instead of Edge N sections), relative to this "
+          "parameter file: a header line, then one edge per line: "
+          "id,from,to,length,flux[,parameter[,initial[,far_end[,far_end_data]]]] (from/to: a "
+          "vertex id or free; to may be loop; parameter: a of linear, alpha of traffic; "
+          "initial: a number or an expression in x without commas; far_end: dirichlet or "
+          "outflow; far_end_data: a number or an expression in t). Lines starting with # are "
+          "comments.");
+    b.add("vertex file", vertex_file, Patterns::Anything(),
+          "With a graph file: a CSV vertex list, id,x,y[,width_factor[,initial_value]] "
+          "(positions for the drawing; width factor and initial value as in Vertex N). Without "
+          "it the vertices are those the edges name.")
+      .check([this](const std::string &f) { return f.empty() || !graph_file.empty(); },
+             "only with a Network/graph file (Vertex N sections go with Edge N sections)");
+    b.add("vertex width factor", vertex_width_factor, Patterns::Double(0),
+          "Width of every vertex control volume (unless its Vertex N section says otherwise) "
+          "in units of the paper's dx_0 = N dx/2 (the half cells of the N edge ends at the "
+          "vertex; a loop has two). 1: the paper's scheme (4.1). 0: a vertex without volume "
+          "whose value solves the discrete Rankine-Hugoniot condition sum_in F = sum_out F at "
+          "every stage.");
+    b.add("vertex initial value", vertex_initial_value, Patterns::Anything(),
+          "u_0 of every vertex at t = 0 (unless its Vertex N section says otherwise): "
+          "'stationary' (the discrete stationary value c_0 of the initial edge traces, "
+          "Definition 4.4) or a constant expression, e.g. sqrt(2/3).");
     for (unsigned int i = 0; i < max_vertex_sections; ++i)
       {
-        prm.enter_subsection(section("Vertex", i));
-        prm.declare_entry("width factor", "default", Patterns::Anything(),
-                          "Width of this vertex's control volume in units of dx_0 = N dx/2 "
-                          "(0: no volume); default: Network/vertex width factor.");
-        prm.declare_entry("initial value", "default", Patterns::Anything(),
-                          "u_0 at t = 0: stationary, a constant expression, or default "
-                          "(Network/vertex initial value).");
-        prm.declare_entry("position", "", Patterns::Anything(),
-                          "'x, y' where the vertex is drawn (give all vertices one, or none).");
-        prm.leave_subsection();
+        VertexSection &v = vertex_sections[i];
+        b.section("Network/" + section("Vertex", i));
+        b.add("width factor", v.width_factor, Patterns::Anything(),
+              "Width of this vertex's control volume in units of dx_0 = N dx/2 (0: no "
+              "volume); default: Network/vertex width factor.");
+        b.add("initial value", v.initial_value, Patterns::Anything(),
+              "u_0 at t = 0: stationary, a constant expression, or default (Network/vertex "
+              "initial value).");
+        b.add("position", v.position, Patterns::Anything(),
+              "'x, y' where the vertex is drawn (give all vertices one, or none).");
       }
     for (unsigned int i = 0; i < max_edge_sections; ++i)
-      {
-        prm.enter_subsection(section("Edge", i));
-        prm.declare_entry("direction", "none", direction_names.pattern(),
-                          "Shorthand for a star graph: how the edge meets Vertex 1: in (it "
-                          "ends there, x = length), out (it starts there, x = 0), loop (a "
-                          "roundabout: both ends there) or none (use from/to, or no such edge).");
-        prm.declare_entry("from", "none", Patterns::Anything(),
-                          "The vertex at x = 0: a number N (Vertex N), free (a free end: far "
-                          "end data or outflow), or none (no such edge, or direction is used).");
-        prm.declare_entry("to", "none", Patterns::Anything(),
-                          "The vertex at x = length: N, free, loop (the from vertex: a "
-                          "roundabout) or none.");
-        prm.declare_entry("length", "1", Patterns::Double(),
-                          "Length L of the edge; its coordinate x runs over [0, L] in the "
-                          "direction of the edge. Must be > 0.");
-        prm.declare_entry("flux", "burgers", flux_law_names.pattern(),
-                          "Flux: linear (f = a u), burgers (f = u^2/2) or traffic "
-                          "(f = alpha f0(u/alpha), f0(u) = 4u(1-u)).");
-        prm.declare_entry("advection speed", "1", Patterns::Double(), "a of the linear flux.");
-        prm.declare_entry("alpha", "1", Patterns::Double(),
-                          "alpha of the traffic flux (capacity alpha at u = alpha/2). "
-                          "Must be > 0.");
-        prm.declare_entry("initial data", "0", Patterns::Anything(),
-                          "u(x, 0) as an expression in x (edge coordinate) and pi, e.g. "
-                          "if(x < 0.5, 2, sqrt(2)).");
-        prm.declare_entry("far end", "outflow", far_end_names.pattern(),
-                          "Condition at a free end: dirichlet (exterior state = far end data: "
-                          "inflow) or outflow (exterior = interior state, the paper's zero "
-                          "Neumann).");
-        prm.declare_entry("far end data", "0", Patterns::Anything(),
-                          "Dirichlet state at a free end, an expression in t and pi.");
-        prm.leave_subsection();
-      }
+      bind_edge_section(b, i, edge_sections[i]);
+    if (b.reading())
+      build();
   }
 
   void
-  GraphInput::parse(ParameterHandler &prm)
+  GraphInput::build()
   {
-    const std::string edge_file   = prm.get("graph file");
-    const std::string vertex_file = prm.get("vertex file");
-    const double      width       = prm.get_double("vertex width factor");
-    const std::string value_text  = prm.get("vertex initial value");
-    const auto        value = vertex_value(value_text, "Network/vertex initial value");
-    require(vertex_file.empty() || !edge_file.empty(), "Network/vertex file", vertex_file,
-            "only with a Network/graph file (Vertex N sections go with Edge N sections)");
-    if (edge_file.empty())
-      parse_sections(prm);
+    const auto value = vertex_value(vertex_initial_value, "Network/vertex initial value");
+    if (graph_file.empty())
+      build_from_sections();
     else
       {
         // the file replaces the sections: they must be unused
         for (unsigned int i = 0; i < max_edge_sections; ++i)
-          {
-            prm.enter_subsection(section("Edge", i));
-            const bool used = prm.get("direction") != "none" || prm.get("from") != "none" ||
-                              prm.get("to") != "none";
-            prm.leave_subsection();
-            require(!used, "Network/" + section("Edge", i) + "/from", "(set)",
-                    "no Edge N sections with a Network/graph file: give the edges in one place");
-          }
+          require(!used(edge_sections[i]), "Network/" + section("Edge", i) + "/from", "(set)",
+                  "no Edge N sections with a Network/graph file: give the edges in one place");
         for (unsigned int i = 0; i < max_vertex_sections; ++i)
           {
-            prm.enter_subsection(section("Vertex", i));
-            for (const auto &[entry, unset] : {std::pair<std::string, std::string>{"width factor", "default"},
-                                               {"initial value", "default"},
-                                               {"position", ""}})
-              require(prm.get(entry) == unset, "Network/" + section("Vertex", i) + "/" + entry,
-                      prm.get(entry),
+            const VertexSection &v = vertex_sections[i];
+            for (const auto &[entry, text, unset] :
+                 {std::tuple<std::string, std::string, std::string>{"width factor",
+                                                                   v.width_factor, "default"},
+                  {"initial value", v.initial_value, "default"},
+                  {"position", v.position, ""}})
+              require(text == unset, "Network/" + section("Vertex", i) + "/" + entry, text,
                       "unset with a Network/graph file: give the vertices' data in "
                       "Network/vertex file");
-            prm.leave_subsection();
           }
-        read_edge_file("Network/graph file", edge_file);
+        read_edge_file("Network/graph file", graph_file);
         if (!vertex_file.empty())
           read_vertex_file("Network/vertex file", vertex_file,
-                           "Network/graph file '" + edge_file + "'");
+                           "Network/graph file '" + graph_file + "'");
       }
     // the Network-wide defaults of the vertices
     value_given.resize(graph.vertices.size(), false);
     for (unsigned int v = 0; v < graph.vertices.size(); ++v)
       {
         if (std::isnan(graph.vertices[v].width_factor))
-          graph.vertices[v].width_factor = width;
+          graph.vertices[v].width_factor = vertex_width_factor;
         if (!value_given[v])
           graph.vertices[v].initial_value = value;
       }
-    graph.validate(edge_file.empty() ? std::string("Network") :
-                                       "Network/graph file '" + edge_file + "'");
+    graph.validate(graph_file.empty() ? std::string("Network") :
+                                        "Network/graph file '" + graph_file + "'");
   }
 
   void
@@ -507,25 +520,22 @@ namespace granular_dg::network
   }
 
   void
-  GraphInput::parse_sections(ParameterHandler &prm)
+  GraphInput::build_from_sections()
   {
     unsigned int n_vertices = 0;
     for (unsigned int i = 0; i < max_edge_sections; ++i)
       {
-        const std::string at = "Network/" + section("Edge", i) + "/";
-        prm.enter_subsection(section("Edge", i));
-        const EdgeKind kind = direction_names.parse(at + "direction", prm.get("direction"));
-        const std::string from = prm.get("from"), to = prm.get("to");
-        if (kind == EdgeKind::none && from == "none" && to == "none")
-          {
-            prm.leave_subsection();
-            continue;
-          }
-        Edge e;
+        const EdgeSection &given = edge_sections[i];
+        if (!used(given))
+          continue;
+        const std::string at   = "Network/" + section("Edge", i) + "/";
+        const EdgeKind    kind = direction_names.parse(at + "direction", given.direction);
+        Edge              e;
         e.label = section("Edge", i);
         if (kind != EdgeKind::none)
           {
-            require(from == "none" && to == "none", at + "direction", prm.get("direction"),
+            require(given.from == "none" && given.to == "none", at + "direction",
+                    given.direction,
                     "none when from/to are given (direction is the star graph's shorthand "
                     "for an edge at Vertex 1)");
             e.meet(kind == EdgeKind::in ? Direction::in :
@@ -533,10 +543,12 @@ namespace granular_dg::network
           }
         else
           {
-            require(from != "none", at + "from", from, "free or a vertex number, since to is set");
-            require(to != "none", at + "to", to, "free, loop or a vertex number, since from is set");
-            e.from = vertex_reference(from, at + "from", false, free_end);
-            e.to   = vertex_reference(to, at + "to", true, e.from);
+            require(given.from != "none", at + "from", given.from,
+                    "free or a vertex number, since to is set");
+            require(given.to != "none", at + "to", given.to,
+                    "free, loop or a vertex number, since from is set");
+            e.from = vertex_reference(given.from, at + "from", false, free_end);
+            e.to   = vertex_reference(given.to, at + "to", true, e.from);
           }
         for (const auto &[v, end] : {std::pair(e.from, "from"), std::pair(e.to, "to")})
           if (v != free_end)
@@ -546,51 +558,45 @@ namespace granular_dg::network
                         " (Vertex N sections; use a Network/graph file for larger networks)");
               n_vertices = std::max(n_vertices, v + 1);
             }
-        const std::string length = prm.get("length");
-        e.length                 = prm.get_double("length");
-        require(e.length > 0, at + "length", length, "must be > 0");
-        const bool linear = prm.get("flux") == "linear";
-        e.flux   = make_flux(prm.get("flux"), prm.get_double(linear ? "advection speed" : "alpha"),
-                           at, linear ? "advection speed" : "alpha");
-        e.far_end = far_end_names.parse(at + "far end", prm.get("far end"));
-        const std::string initial = prm.get("initial data"), far = prm.get("far end data");
-        prm.leave_subsection();
-        add_edge(e, at, initial, far, "initial data", "far end data");
+        e.length = given.length;
+        const bool linear = given.flux == "linear";
+        e.flux    = make_flux(given.flux, linear ? given.advection_speed : given.alpha, at,
+                           linear ? "advection speed" : "alpha");
+        e.far_end = far_end_names.parse(at + "far end", given.far_end);
+        add_edge(e, at, given.initial_data, given.far_end_data, "initial data", "far end data");
       }
     require(!graph.edges.empty(), "Network/Edge 1/direction", "none",
             "in, out or loop (or from/to) for at least one Network/Edge N");
+    vertices_from_sections(n_vertices);
+  }
 
+  void
+  GraphInput::vertices_from_sections(unsigned int n_vertices)
+  {
     // the vertices: those the edges name, and every section that sets something
     for (unsigned int i = 0; i < max_vertex_sections; ++i)
-      {
-        prm.enter_subsection(section("Vertex", i));
-        if (prm.get("width factor") != "default" || prm.get("initial value") != "default" ||
-            prm.get("position") != "")
-          n_vertices = std::max(n_vertices, i + 1);
-        prm.leave_subsection();
-      }
+      if (vertex_sections[i].width_factor != "default" ||
+          vertex_sections[i].initial_value != "default" || !vertex_sections[i].position.empty())
+        n_vertices = std::max(n_vertices, i + 1);
     for (unsigned int i = 0; i < n_vertices; ++i)
       {
-        const std::string at = "Network/" + section("Vertex", i) + "/";
-        prm.enter_subsection(section("Vertex", i));
-        Vertex v;
-        v.label = section("Vertex", i);
-        const std::string w = prm.get("width factor"), value = prm.get("initial value"),
-                          pos = prm.get("position");
-        prm.leave_subsection();
+        const VertexSection &given = vertex_sections[i];
+        const std::string    at    = "Network/" + section("Vertex", i) + "/";
+        Vertex               v;
+        v.label        = section("Vertex", i);
         v.width_factor = NAN;
-        if (w != "default")
+        if (given.width_factor != "default")
           {
-            const auto x = as_number(w);
-            require(x && *x >= 0 && std::isfinite(*x), at + "width factor", w,
+            const auto x = as_number(given.width_factor);
+            require(x && *x >= 0 && std::isfinite(*x), at + "width factor", given.width_factor,
                     "default or a number >= 0");
             v.width_factor = *x;
           }
-        value_given.push_back(value != "default");
-        if (value != "default")
-          v.initial_value = vertex_value(value, at + "initial value");
-        if (!pos.empty())
-          v.position = position(pos, at + "position");
+        value_given.push_back(given.initial_value != "default");
+        if (given.initial_value != "default")
+          v.initial_value = vertex_value(given.initial_value, at + "initial value");
+        if (!given.position.empty())
+          v.position = position(given.position, at + "position");
         graph.vertices.push_back(v);
       }
   }

@@ -160,7 +160,7 @@ namespace granular_dg::network
       }
     const EdgeMethod edge_method{method.degree, options.flux,     method.limiter,
                                  method.tvb_M,  method.indicator, method.indicator_threshold,
-                                 method.blending_max};
+                                 method.blending_max()};
     lines = std::make_unique<EdgeLines>(edge_method, std::move(laws), cells, sizes);
     for (const unsigned int k : ranks->edges())
       for (const unsigned int side : {0u, 1u})
@@ -266,8 +266,8 @@ namespace granular_dg::network
     i.method.add("engine", "line");
     i.method.add("numerical_flux", numerical_flux_names.name(options.flux));
     i.method.add("limiter", method.limiter_name);
-    if (method.blending_max > 0)
-      i.method.add("subcell_blending", method.blending_max);
+    if (method.blending_max() > 0)
+      i.method.add("subcell_blending", method.blending_max());
     i.method.add("scheme", integrator);
     i.method.add("n_edges", static_cast<long long>(net.edges.size()));
     i.bytes_per_snapshot = snapshot_bytes(i.n_cells, method, options);
@@ -939,7 +939,7 @@ namespace granular_dg::network
       header.emplace_back("l1_error");
     if (exact && vertices)
       header.emplace_back("l1_error_vertex");
-    if (method.blending_max > 0)
+    if (method.blending_max() > 0)
       header.emplace_back("blended_cells");
     return header;
   }
@@ -948,7 +948,7 @@ namespace granular_dg::network
   NetworkProblem::timeseries_comment() const
   {
     const std::string blended =
-      method.blending_max > 0 ? "; blended_cells: cells of all edges with a blending factor > 0" : "";
+      method.blending_max() > 0 ? "; blended_cells: cells of all edges with a blending factor > 0" : "";
     if (net.is_star())
       return "mass_balance_residual = |mass - mass(0) - boundary_inflow| / ||u(0)||_L1; "
              "rh_residual = sum_in F - sum_out F at the vertex" +
@@ -978,7 +978,7 @@ namespace granular_dg::network
         if (vertices)
           row.push_back(e.l1_vertex);
       }
-    if (method.blending_max > 0)
+    if (method.blending_max() > 0)
       {
         // cells of all edges whose last stage blended in finite volumes
         row.push_back(ranks->sum(double(lines->n_blended_cells())));

@@ -10,6 +10,7 @@
 #include <deal.II/base/mpi.h>
 
 #include <granular_dg/base/output.h>
+#include <granular_dg/base/parameter_binding.h>
 #include <granular_dg/base/parameters.h>
 #include <granular_dg/base/run_parameters.h>
 #include <granular_dg/base/scene.h>
@@ -49,69 +50,23 @@ namespace granular_dg::network
     /// solution and the CFL numbers of a convergence study.
     struct Case
     {
-      static void
-      declare(ParameterHandler &prm);
       void
-      parse(ParameterHandler &prm, const RunParameters &common,
-            const dg::DiscretizationParameters &method);
+      bind(ParameterBinding &b, const RunParameters &common,
+           const dg::DiscretizationParameters &method);
 
       GraphInput                     input;
       dg::DiscretizationParameters   method;
       NetworkOptions                 options;
+      std::string                    exact_name = "none";
       std::shared_ptr<ExactSolution> exact;
       std::vector<double>            cfl;
+
+    private:
+      void
+      require_method_fits(const RunParameters &common, const dg::DiscretizationParameters &method);
+      void
+      build_exact_solution(const RunParameters &common);
     };
-
-    void
-    Case::declare(ParameterHandler &prm)
-    {
-      // the paper's scheme unless the file says otherwise
-      prm.enter_subsection("Discretization");
-      prm.set("degree", "0");
-      prm.set("numerical flux", "upwind");
-      prm.leave_subsection();
-      prm.enter_subsection("Time stepping");
-      prm.set("CFL number", "0.5");
-      prm.leave_subsection();
-
-      prm.enter_subsection("Network");
-      prm.declare_entry("cells per unit length", "256", Patterns::Integer(1),
-                        "Cells per unit length of edge: the paper's grid level l is 2^l "
-                        "(dx = 2^-l); an edge of length L gets round(L * this) cells.");
-      prm.declare_entry("vertex width factor", "1", Patterns::Double(0),
-                        "Width of every vertex control volume (unless its Vertex N section "
-                        "says otherwise) in units of the paper's dx_0 = N dx/2 (the half "
-                        "cells of the N edge ends at the vertex; a loop has two). 1: the "
-                        "paper's scheme (4.1). 0: a vertex without volume whose value solves "
-                        "the discrete Rankine-Hugoniot condition sum_in F = sum_out F at "
-                        "every stage.");
-      prm.declare_entry("vertex initial value", "stationary", Patterns::Anything(),
-                        "u_0 of every vertex at t = 0 (unless its Vertex N section says "
-                        "otherwise): 'stationary' (the discrete stationary value c_0 of the "
-                        "initial edge traces, Definition 4.4) or a constant expression, "
-                        "e.g. sqrt(2/3).");
-      prm.declare_entry("edge profiles", "per_edge", profile_names.pattern(),
-                        "What a snapshot writes besides solution-NNNN.vtu: per_edge "
-                        "(profile-NNNN-edge-K.csv, one file per edge), one_file "
-                        "(profile-NNNN.csv with an edge column: for large networks) or none.");
-      prm.declare_entry("exact solution", "none", Patterns::Selection(exact_choices()),
-                        "Exact solution for the error measurement (L1 over all edges and "
-                        "the vertex cell): none, initial_data (the data are a stationary "
-                        "state), example_7_1 ... example_7_5 (Musch, Fjordholm & Risebro "
-                        "Section 7; the graph and data are checked against the example), "
-                        "smooth_linear (a smooth solution through the vertex), two_stars "
-                        "(two star vertices joined by an edge, Burgers shocks) or "
-                        "smooth_two_vertices (a smooth solution through two vertices).");
-      GraphInput::declare(prm);
-      prm.leave_subsection();
-
-      prm.enter_subsection("Time stepping");
-      prm.declare_entry("integrator", "auto", integrator_names.pattern(),
-                        "auto: forward_euler at degree 0 (exactly the paper's scheme (4.1)) "
-                        "and ssprk3 at degree >= 1.");
-      prm.leave_subsection();
-    }
-
 
     /// The initial data as the exact solution: a stationary state.
     class InitialData : public ExactSolution
@@ -329,72 +284,98 @@ namespace granular_dg::network
     }
 
     void
-    Case::parse(ParameterHandler &prm, const RunParameters &common,
-                const dg::DiscretizationParameters &method)
+    Case::bind(ParameterBinding &b, const RunParameters &common,
+               const dg::DiscretizationParameters &method)
+    {
+      // the paper's scheme unless the file says otherwise
+      b.set_default("Discretization/degree", "0");
+      b.set_default("Discretization/numerical flux", "upwind");
+      b.set_default("Time stepping/CFL number", "0.5");
+      if (b.reading())
+        require_method_fits(common, method);
+
+      b.section("Network");
+      b.add("cells per unit length", options.cells_per_unit_length, Patterns::Integer(1),
+            "Cells per unit length of edge: the paper's grid level l is 2^l (dx = 2^-l); an "
+            "edge of length L gets round(L * this) cells.");
+      b.add("edge profiles", options.profiles, profile_names,
+            "What a snapshot writes besides solution-NNNN.vtu: per_edge "
+            "(profile-NNNN-edge-K.csv, one file per edge), one_file (profile-NNNN.csv with an "
+            "edge column: for large networks) or none.");
+      b.add("exact solution", exact_name, Patterns::Selection(exact_choices()),
+            "Exact solution for the error measurement (L1 over all edges and the vertex cell): "
+            "none, initial_data (the data are a stationary state), example_7_1 ... "
+            "example_7_5 (Musch, Fjordholm & Risebro Section 7; the graph and data are checked "
+            "against the example), smooth_linear (a smooth solution through the vertex), "
+            "two_stars (two star vertices joined by an edge, Burgers shocks) or "
+            "smooth_two_vertices (a smooth solution through two vertices).");
+      b.section("Time stepping");
+      // forward Euler is unstable with DG of degree >= 1 at every CFL number
+      const auto degrees = common.convergence ? common.convergence_degrees :
+                                                std::vector<unsigned int>{method.degree};
+      b.add("integrator", options.integrator, integrator_names,
+            "auto: forward_euler at degree 0 (exactly the paper's scheme (4.1)) and ssprk3 at "
+            "degree >= 1.");
+      for (const unsigned int p : degrees)
+        if (b.reading())
+          require(options.integrator != Integrator::forward_euler || p == 0,
+                  "Time stepping/integrator", "forward_euler",
+                  "auto or ssprk3 at degree " + std::to_string(p) +
+                    " (forward Euler is unstable with DG of degree >= 1)");
+      input.bind(b);
+      if (!b.reading())
+        return;
+      // before any edge is discretised (below for initial_data, then by run())
+      require_network_fits(*this, common);
+      build_exact_solution(common);
+      cfl = common.convergence_cfl;
+      if (cfl.empty())
+        cfl.assign(common.convergence_degrees.size(), method.cfl);
+    }
+
+    void
+    Case::require_method_fits(const RunParameters &common, const dg::DiscretizationParameters &m)
     {
       if (common.convergence && Utilities::MPI::n_mpi_processes(MPI_COMM_WORLD) > 1)
         throw InputError("the network's convergence study (Convergence/enabled = true) runs on "
                          "one MPI rank: run it without mpirun, or set Convergence/enabled = false "
                          "for a single run on several ranks");
-      require(method.scheme == dg::TimeScheme::ssp_rk3, "Time stepping/scheme",
-              dg::time_scheme_name(method.scheme),
+      require(m.scheme == dg::TimeScheme::ssp_rk3, "Time stepping/scheme",
+              dg::time_scheme_name(m.scheme),
               "ssp_rk3 (the network's vertex coupling runs with Euler or SSP-RK3 stages; "
               "Time stepping/integrator chooses between them)");
-      require(method.skip_tolerance == 0, "Time stepping/skip tolerance", method.skip_tolerance,
+      require(m.skip_tolerance == 0, "Time stepping/skip tolerance", m.skip_tolerance,
               "0 here: the network computes every cell of every edge in every step (skipping "
               "quiet cells is built in the DG solver of the 1D scenes, not for the network)");
-      require(method.engine != dg::Engine::matrix_free, "Discretization/engine", "matrix_free",
+      require(m.engine != dg::Engine::matrix_free, "Discretization/engine", "matrix_free",
               "auto or line here: the network's edges run in one line engine (EdgeLines)");
-      Case &c          = *this;
-      c.method         = method;
-      c.options.flux   = numerical_flux_names.parse("Discretization/numerical flux", method.flux);
-      c.options.write_vtu = common.write_vtu;
-      common.require_format_fits(1);  // the edges are 1D
+      method            = m;
+      options.flux      = numerical_flux_names.parse("Discretization/numerical flux", m.flux);
+      options.write_vtu = common.write_vtu;
+      common.require_format_fits(1); // the edges are 1D
+    }
 
-      prm.enter_subsection("Time stepping");
-      c.options.integrator =
-        integrator_names.parse("Time stepping/integrator", prm.get("integrator"));
-      prm.leave_subsection();
-
-      prm.enter_subsection("Network");
-      c.options.cells_per_unit_length = prm.get_integer("cells per unit length");
-      c.options.profiles =
-        profile_names.parse("Network/edge profiles", prm.get("edge profiles"));
-      const std::string exact_name = prm.get("exact solution");
-      c.input.parse(prm);
-      prm.leave_subsection();
-      // before any edge is discretised (below for initial_data, then by run())
-      require_network_fits(c, common);
-
+    void
+    Case::build_exact_solution(const RunParameters &common)
+    {
       if (exact_name == "initial_data")
         {
           std::vector<std::shared_ptr<Function<1>>> f;
-          for (const auto &d : c.input.data)
+          for (const auto &d : input.data)
             f.push_back(d.initial);
           // the vertex values of a stationary state: given, or c_0 of the data
-          NetworkProblem probe(c.input.graph, c.method, c.options, c.input.data);
-          probe.initialize();
-          c.exact = std::make_shared<InitialData>(f, probe.vertex_values());
+          NetworkProblem stationary(input.graph, method, options, input.data);
+          stationary.initialize();
+          exact = std::make_shared<InitialData>(f, stationary.vertex_values());
         }
       else if (exact_name != "none")
         {
           const Example ex = make_example(exact_name);
-          check_example(ex, c, common.final_time);
-          c.exact = ex.exact;
-          for (unsigned int k = 0; k < c.input.data.size(); ++k)
-            c.input.data[k].initial_breakpoints = ex.exact->breakpoints(k, 0.);
+          check_example(ex, *this, common.final_time);
+          exact = ex.exact;
+          for (unsigned int k = 0; k < input.data.size(); ++k)
+            input.data[k].initial_breakpoints = ex.exact->breakpoints(k, 0.);
         }
-
-      c.cfl = common.convergence_cfl;
-      if (c.cfl.empty())
-        c.cfl.assign(common.convergence_degrees.size(), method.cfl);
-      // forward Euler is unstable with DG of degree >= 1 at every CFL number
-      for (const unsigned int p : common.convergence ? common.convergence_degrees :
-                                                       std::vector<unsigned int>{method.degree})
-        require(c.options.integrator != Integrator::forward_euler || p == 0,
-                "Time stepping/integrator", "forward_euler",
-                "auto or ssprk3 at degree " + std::to_string(p) +
-                  " (forward Euler is unstable with DG of degree >= 1)");
     }
 
     void

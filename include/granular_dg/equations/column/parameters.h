@@ -11,7 +11,8 @@ namespace granular_dg::column
   using namespace dealii;
 
   /// Everything the column scene reads from the prm file (subsections
-  /// Physics, Mesh, Diagnostics), parsed and checked once.
+  /// Physics, Mesh, Diagnostics): each entry declared, read and checked in
+  /// bind() (ParameterBinding; the defaults are the initial values here).
   struct ColumnParameters
   {
     Parameters   physics;
@@ -26,11 +27,9 @@ namespace granular_dg::column
     bool         closed_end      = false;
     bool         printed_weights = false;
 
-    static void
-    declare(ParameterHandler &prm);
     /// (the closed form's range depends on Time stepping/final time)
     void
-    parse(ParameterHandler &prm, const RunParameters &run,
-          const dg::DiscretizationParameters &method);
+    bind(ParameterBinding &b, const RunParameters &run,
+         const dg::DiscretizationParameters &method);
   };
 } // namespace granular_dg::column

@@ -29,25 +29,47 @@ namespace granular_dg::hopper
                                               {Variables::unscaled, "unscaled"}});
 
   /// Everything the hopper scene reads from the prm file (subsections
-  /// Hopper, Physics, Hopper output, Scan), parsed and checked once.
+  /// Hopper, Physics, Hopper output, Scan): each entry declared, read and
+  /// checked in bind() (ParameterBinding; the defaults are the initial values
+  /// here), angles as given in degrees.
   struct Parameters
   {
-    Mode         mode;
-    Geometry     geometry;
-    Variables    variables;
-    MohrCoulomb  material;
-    double       rho, g, r0, perturbation;
-    double       Theta_w, theta_w; // radians
-    unsigned int cells;
-    unsigned int radial_points, sample_points, field_theta_points, field_rows,
-      step_interval;
-    double       upper_region;
-    double       scan_from, scan_to, scan_step;
+    Mode         mode         = Mode::march;
+    Geometry     geometry     = Geometry::cone;
+    double       upper_angle  = 30.;
+    double       lower_angle  = 30.;
+    double       r0           = 1.;
+    unsigned int cells        = 400;
+    double       perturbation = 0.;
 
-    static void
-    declare(ParameterHandler &prm);
+    double    internal_friction_angle = 32.1;
+    double    wall_friction_angle     = 11.7;
+    double    rho                     = 790.;
+    double    g                       = 9.81;
+    Variables variables               = Variables::scaled;
+
+    unsigned int radial_points      = 61;
+    unsigned int sample_points      = 401;
+    unsigned int field_theta_points = 101;
+    unsigned int field_rows         = 120;
+    double       upper_region       = 0.5;
+    unsigned int step_interval      = 1;
+
+    double scan_from = 2., scan_to = 45., scan_step = 0.5;
+
+    /// derived once read: the half-angles Theta_w, theta_w in radians and
+    /// the material of the two friction angles
+    double      Theta_w = 30. * deg, theta_w = 30. * deg;
+    MohrCoulomb material;
+
     void
-    parse(ParameterHandler &prm, const RunParameters &run,
-          const dg::DiscretizationParameters &method);
+    bind(ParameterBinding &b, const RunParameters &run,
+         const dg::DiscretizationParameters &method);
+
+  private:
+    void
+    bind_output(ParameterBinding &b);
+    void
+    bind_scan(ParameterBinding &b);
   };
 } // namespace granular_dg::hopper

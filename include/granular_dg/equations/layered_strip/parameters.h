@@ -79,13 +79,15 @@ namespace granular_dg::layered_strip
     StressLaw                  law = StressLaw::quadratic;
     NumericalFlux              flux = NumericalFlux::local_lax_friedrichs;
     Layers                     layers;
-    Point<2>                   lo, hi;
-    std::array<unsigned int, 2> cells{{1, 1}};
-    /// left, right, bottom, top (2 dim of them) and their data expressions
-    std::vector<Side>          sides;
-    std::vector<std::string>   side_data;
-    double                     periodic_from = 0.;
-    PrimitiveExpressions       initial, exact;
+    Point<2>                   lo = Point<2>(0., 0.), hi = Point<2>(1., 1.);
+    std::array<unsigned int, 2> cells{{64, 4}};
+    /// left, right, bottom, top (2 dim of them once read) and their data
+    /// expressions
+    std::vector<Side>        sides     = std::vector<Side>(4, Side::outflow);
+    std::vector<std::string> side_data = std::vector<std::string>(4, "0");
+    double                   periodic_from = 0.;
+    PrimitiveExpressions     initial{"Initial condition", "0", "", "0"};
+    PrimitiveExpressions     exact{"Exact solution", "0", "", "0"};
     bool                       exact_available = false;
     std::string                reference_file;
     /// Time stepping/final time: the reference file's time must be it
@@ -94,11 +96,21 @@ namespace granular_dg::layered_strip
     /// the line y = slice_y of slice-NNNN.csv (NaN: none)
     double                     slice_y = NAN;
 
-    static void
-    declare(ParameterHandler &prm);
+    /// Every entry, declared, read and checked in one place
+    /// (ParameterBinding; the defaults are the initial values above).
     void
-    parse(ParameterHandler &prm, const RunParameters &run,
-          const dg::DiscretizationParameters &method);
+    bind(ParameterBinding &b, const RunParameters &run,
+         const dg::DiscretizationParameters &method);
+
+  private:
+    void
+    bind_materials(ParameterBinding &b);
+    void
+    bind_data(ParameterBinding &b, PrimitiveExpressions &e, const std::string &section);
+    void
+    bind_sides(ParameterBinding &b);
+    void
+    read_slice(const std::string &text);
   };
 
   extern const char *const side_label[4];

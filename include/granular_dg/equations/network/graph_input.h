@@ -8,8 +8,40 @@
 #include <string>
 #include <vector>
 
+namespace granular_dg
+{
+  class ParameterBinding;
+}
+
 namespace granular_dg::network
 {
+  /// The largest number N of the Network/Edge N and Vertex N subsections.
+  constexpr unsigned int max_edge_sections   = 16;
+  constexpr unsigned int max_vertex_sections = 8;
+
+  /// The entries of one Network/Edge N subsection, as given.
+  struct EdgeSection
+  {
+    std::string direction = "none";
+    std::string from      = "none";
+    std::string to        = "none";
+    double      length    = 1.;
+    std::string flux      = "burgers";
+    double      advection_speed = 1.;
+    double      alpha           = 1.;
+    std::string initial_data    = "0";
+    std::string far_end         = "outflow";
+    std::string far_end_data    = "0";
+  };
+
+  /// The entries of one Network/Vertex N subsection, as given.
+  struct VertexSection
+  {
+    std::string width_factor  = "default";
+    std::string initial_value = "default";
+    std::string position;
+  };
+
   /**
    * The graph of a network case and the data of its edges, read from the
    * prm (subsections Vertex N and Edge N of Network) or from CSV files
@@ -19,6 +51,16 @@ namespace granular_dg::network
    */
   struct GraphInput
   {
+    /// The entries (bind()): in subsection Network ...
+    std::string graph_file;
+    std::string vertex_file;
+    double      vertex_width_factor  = 1.;
+    std::string vertex_initial_value = "stationary";
+    /// ... and its subsections Edge N and Vertex N
+    std::vector<EdgeSection>   edge_sections   = std::vector<EdgeSection>(max_edge_sections);
+    std::vector<VertexSection> vertex_sections = std::vector<VertexSection>(max_vertex_sections);
+
+    /// What they describe, built and validated once they are read:
     Graph                    graph;
     std::vector<EdgeData>    data;
     /// per edge: its initial data as written, and where it was given
@@ -26,16 +68,20 @@ namespace granular_dg::network
     std::vector<std::string> initial_text;
     std::vector<std::string> where;
 
-    /// Declare the graph's entries (inside subsection Network).
-    static void
-    declare(ParameterHandler &prm);
-    /// Read them (inside subsection Network).
+    /// The graph's entries, each with its field, pattern and documentation
+    /// (ParameterBinding); once read, the graph and its data built from them.
     void
-    parse(ParameterHandler &prm);
+    bind(ParameterBinding &b);
 
   private:
     void
-    parse_sections(ParameterHandler &prm);
+    build();
+    void
+    build_from_sections();
+    /// the vertices the edges name (the first n_vertices) and those whose
+    /// Vertex N section sets something
+    void
+    vertices_from_sections(unsigned int n_vertices);
     /// e with its data (numbers become constants, else expressions; the
     /// names are the data's parameters in messages)
     void
@@ -54,8 +100,4 @@ namespace granular_dg::network
     read_vertex_file(const std::string &parameter, const std::string &file,
                      const std::string &edges);
   };
-
-  /// The largest number N of the Network/Edge N and Vertex N subsections.
-  constexpr unsigned int max_edge_sections   = 16;
-  constexpr unsigned int max_vertex_sections = 8;
 } // namespace granular_dg::network

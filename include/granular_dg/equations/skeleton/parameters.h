@@ -22,10 +22,14 @@ namespace granular_dg::skeleton
     std::string    initial = "sin(2*pi*x)";
     bool           periodic = true;
 
-    static void
-    declare(ParameterHandler &prm);
+    /// Every entry, declared and read in one place (ParameterBinding; the
+    /// defaults are the initial values above).
     void
-    parse(ParameterHandler &prm, const RunParameters &run,
-          const dg::DiscretizationParameters &method);
+    bind(ParameterBinding &b, const RunParameters &run,
+         const dg::DiscretizationParameters &method);
+
+  private:
+    void
+    read_velocity(const std::string &text);
   };
 } // namespace granular_dg::skeleton
