@@ -26,9 +26,9 @@ import subprocess
 import sys
 
 from granular_dg import outputs, parser
-from granular_dg.run import ENV, NO_SNAPSHOTS, ROOT, load, run_case
+from granular_dg.run import ENV, NO_SNAPSHOTS, ROOT, cfl_limits, load, run_case
+from make_network_grid import write_grid
 
-HERE = os.path.dirname(os.path.abspath(__file__))
 STEP67 = "/usr/share/doc/libdeal.ii-doc/examples/step-67/step-67.cc"
 # the shipped CFL numbers at every degree (above the SSP-RK3 limit at p >= 3
 # for some cases: a cost per step, not an accuracy statement)
@@ -57,27 +57,19 @@ CASES = {
 
 def make_network_grid(out):
     """the 71 x 71 grid's CSV files in OUT_DIR, named in the case's overrides"""
-    edges = os.path.join(os.path.abspath(out), "grid71.csv")
-    vertices = os.path.join(os.path.abspath(out), "grid71_vertices.csv")
-    subprocess.run([sys.executable, os.path.join(HERE, "make_network_grid.py"), "71", edges, vertices],
-                   check=True, stdout=subprocess.DEVNULL)
+    edges, vertices = (os.path.join(os.path.abspath(out), f) for f in ("grid71.csv", "grid71_vertices.csv"))
+    write_grid(71, edges, vertices)
     CASES["network_grid"][2].extend(["Network/graph file=" + edges, "Network/vertex file=" + vertices])
 
 
-# the linear stability limits of SSP-RK3 + DG P_p that the program enforces
-# (dg::cfl_limit(ssp_rk3, p) in source/dg/parameters.cc)
-CFL_LIMITS = [1.2563, 0.4095, 0.2097, 0.13, 0.0896]
-
-
 def cfl_override(prm, degree):
-    """The CFL number down to the limit of the degree when the case file's
-    is above it (the program refuses it; the time step does not change the
-    cost of a step)."""
+    """The CFL number down to the program's SSP-RK3 limit of the degree when
+    the case file's is above it (the program refuses it; the time step does
+    not change the cost of a step)."""
+    limit = cfl_limits()["ssp_rk3"][min(degree, 4)]
     with open(os.path.join(ROOT, prm)) as f:
         m = re.search(r"^\s*set CFL number\s*=\s*([\d.eE+-]+)", f.read(), re.M)
-    if m and float(m[1]) > CFL_LIMITS[min(degree, 4)]:
-        return ["Time stepping/CFL number=%g" % CFL_LIMITS[min(degree, 4)]]
-    return []
+    return ["Time stepping/CFL number=%g" % limit] if m and float(m[1]) > limit else []
 
 
 def run_ours(build, out, name, degree, quick, ranks=1, reuse=False):
@@ -142,39 +134,34 @@ def patch_step67(src, dim, degree, refinements, steps):
 
 
 def run_step67(build, dim, degree, refinements, steps, reuse=False):
+    """step-67 built in BUILD/step67-<dim>d-p<degree>/ (once) and run three
+    times: the row of its best CPU time (kept in result.json; reused)."""
     d = os.path.join(os.path.abspath(build), "step67-%dd-p%d" % (dim, degree))
-    exe = os.path.join(d, "step-67")
-    if reuse and os.path.exists(os.path.join(d, "result.json")):
-        with open(os.path.join(d, "result.json")) as f:
+    exe, result = os.path.join(d, "step-67"), os.path.join(d, "result.json")
+    if reuse and os.path.exists(result):
+        with open(result) as f:
             return json.load(f)
     if not os.path.exists(exe):
         os.makedirs(d, exist_ok=True)
-        with open(STEP67) as f:
-            src = f.read()
-        with open(os.path.join(d, "step-67.cc"), "w") as f:
-            f.write(patch_step67(src, dim, degree, refinements, steps))
+        with open(STEP67) as f, open(os.path.join(d, "step-67.cc"), "w") as g:
+            g.write(patch_step67(f.read(), dim, degree, refinements, steps))
         shutil.copy(os.path.join(os.path.dirname(STEP67), "CMakeLists.txt"), d)
         subprocess.run(["cmake", "-S", d, "-B", d, "-DCMAKE_BUILD_TYPE=Release"], check=True,
                        stdout=subprocess.DEVNULL)
         subprocess.run(["make", "-C", d, "-j1", "step-67"], check=True, stdout=subprocess.DEVNULL)
-    before = load(3)
-    env = dict(os.environ, **ENV)
-    best = None
-    for _ in range(3):  # repeated: the best CPU time
-        p = subprocess.run([exe], cwd=d, capture_output=True, text=True, check=True, env=env)
+    before, runs = load(3), []
+    for _ in range(3):
+        p = subprocess.run([exe], cwd=d, capture_output=True, text=True, check=True, env=dict(os.environ, **ENV))
         m = re.search(r"BENCHMARK n_dofs (\d+) steps (\d+) stages (\d+) cpu ([\d.eE+-]+) wall ([\d.eE+-]+)",
                       p.stdout)
-        n_dofs, n_steps, stages, cpu, wall = (int(m[1]), int(m[2]), int(m[3]), float(m[4]), float(m[5]))
-        if best is None or cpu < best[3]:
-            best = (n_dofs, n_steps, stages, cpu, wall)
-    n_dofs, n_steps, stages, cpu, wall = best
+        runs.append((float(m[4]), int(m[1]), int(m[2]), int(m[3]), float(m[5])))
+    cpu, n_dofs, n_steps, stages, wall = min(runs, key=lambda r: r[0])  # the first of the best CPU time
     rate = n_dofs * stages * n_steps / cpu / 1e6
-    r = {"code": "step-67", "case": "euler_entropy_wave_1d" if dim == 1 else "euler_vortex_2d", "dim": dim, "degree": degree, "ranks": 1,
-            "engine": "matrix_free", "n_dofs": n_dofs, "steps": n_steps,
-            "cpu_us_per_step": 1e6 * cpu / n_steps, "mdofs_step": rate, "mdofs_rk": rate,
-            "mdofs_wall": n_dofs * stages * n_steps / wall / 1e6,
-            "load_before": before, "load_after": load(3)}
-    with open(os.path.join(d, "result.json"), "w") as f:
+    r = {"code": "step-67", "case": "euler_entropy_wave_1d" if dim == 1 else "euler_vortex_2d", "dim": dim,
+         "degree": degree, "ranks": 1, "engine": "matrix_free", "n_dofs": n_dofs, "steps": n_steps,
+         "cpu_us_per_step": 1e6 * cpu / n_steps, "mdofs_step": rate, "mdofs_rk": rate,
+         "mdofs_wall": n_dofs * stages * n_steps / wall / 1e6, "load_before": before, "load_after": load(3)}
+    with open(result, "w") as f:
         json.dump(r, f)
     return r
 
@@ -187,11 +174,11 @@ FIELDS = ["code", "case", "dim", "degree", "ranks", "engine", "n_dofs", "steps",
 def write_tables(out, rows):
     s67 = {(r["dim"], r["degree"]): r["mdofs_rk"] for r in rows if r["code"] == "step-67"}
     for r in rows:
-        ref = s67.get((r["dim"], r["degree"]))
-        r["ratio_to_step67"] = r["mdofs_rk"] / ref if ref and r["code"] != "step-67" else ""
+        ref = s67.get((r["dim"], r["degree"])) if r["code"] != "step-67" else None
         # the whole step (limiter, admissibility, time step included) against
         # step-67's RK, which is its whole step
-        r["step_ratio_to_step67"] = r["mdofs_step"] / ref if ref and r["code"] != "step-67" else ""
+        r["ratio_to_step67"] = r["mdofs_rk"] / ref if ref else ""
+        r["step_ratio_to_step67"] = r["mdofs_step"] / ref if ref else ""
     outputs.write_csv(os.path.join(out, "throughput.csv"),
                       [{k: ("%.4g" % r[k] if isinstance(r[k], float) else r[k]) for k in FIELDS} for r in rows])
     with open(os.path.join(out, "throughput.md"), "w") as f:
@@ -217,42 +204,33 @@ def main():
                     help="2: the vortex on 128^2 cells; 1: a smooth entropy wave on 1024 cells")
     ap.add_argument("--cases", default=",".join(CASES))
     ap.add_argument("--mpi", action="store_true",
-                    help="also on 2 ranks: layered_2d (p = 2, 3) and network_grid (p = 0, 2), "
-                         "those of --cases")
+                    help="also on 2 ranks: layered_2d (p = 2, 3) and network_grid (p = 0, 2), those of --cases")
     ap.add_argument("--reuse", action="store_true", help="take runs with a result already there")
     a = ap.parse_args()
     os.makedirs(a.out, exist_ok=True)
-    degrees = [int(x) for x in a.degrees.split(",")]
-    if "network_grid" in a.cases.split(","):
+    cases, rows = [c for c in a.cases.split(",") if c], []
+    if "network_grid" in cases:
         make_network_grid(a.out)
-    rows = []
-    for name in [c for c in a.cases.split(",") if c]:
-        for p in degrees:
-            r = run_ours(a.build, a.out, name, p, a.quick, reuse=a.reuse)
-            if r:
-                rows.append(r)
-                print(r, flush=True)
-                write_tables(a.out, rows)
-    if a.mpi:
-        for name, mpi_degrees in (("layered_2d", (2, 3)), ("network_grid", (0, 2))):
-            for p in mpi_degrees if name in a.cases.split(",") else ():
-                r = run_ours(a.build, a.out, name, p, a.quick, ranks=2, reuse=a.reuse)
-                if r:
-                    rows.append(r)
-                    print(r, flush=True)
-    if not a.no_step67:
-        # 2D: [0,10] x [-5,5], 4 x 2^refinements cells per direction: 128^2
-        # cells, as many DoFs as the 2D strip (0.3-1.2 M); 1D: [0, 10],
-        # 4 x 2^8 = 1024 cells (the 1D cases have 1200-1600)
-        for dim in [int(x) for x in a.step67_dims.split(",")]:
-            for p in [int(x) for x in a.step67_degrees.split(",")]:
-                if dim == 2:
-                    r = run_step67(a.build, 2, p, 5, 20 if a.quick else 60, reuse=a.reuse)
-                else:
-                    r = run_step67(a.build, 1, p, 8, 100 if a.quick else 1000, reuse=a.reuse)
-                rows.append(r)
-                print(r, flush=True)
-                write_tables(a.out, rows)
+
+    def add(row):
+        if row:
+            rows.append(row)
+            print(row, flush=True)
+            write_tables(a.out, rows)
+
+    for name, p in ((name, int(p)) for name in cases for p in a.degrees.split(",")):
+        add(run_ours(a.build, a.out, name, p, a.quick, reuse=a.reuse))
+    for name, p in ((n, p) for n, ps in (("layered_2d", (2, 3)), ("network_grid", (0, 2))) for p in ps):
+        if a.mpi and name in cases:
+            add(run_ours(a.build, a.out, name, p, a.quick, ranks=2, reuse=a.reuse))
+    # 2D: [0,10] x [-5,5], 4 x 2^refinements cells per direction: 128^2 cells, as
+    # many DoFs as the 2D strip (0.3-1.2 M); 1D: [0, 10], 4 x 2^8 = 1024 cells
+    # (the 1D cases have 1200-1600); (refinements, time steps, --quick's)
+    step67 = {2: (5, 60, 20), 1: (8, 1000, 100)}
+    for dim, p in ((int(d), int(p)) for d in a.step67_dims.split(",") for p in a.step67_degrees.split(",")):
+        if not a.no_step67:
+            refinements, steps, quick = step67[dim]
+            add(run_step67(a.build, dim, p, refinements, quick if a.quick else steps, reuse=a.reuse))
     write_tables(a.out, rows)
 
 

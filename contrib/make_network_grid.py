@@ -17,53 +17,23 @@ usage: make_network_grid.py N EDGES.csv VERTICES.csv
 import sys
 
 
-def main():
-    if len(sys.argv) != 4:
-        sys.exit(__doc__)
-    n = int(sys.argv[1])
-    if n < 2:
-        sys.exit('N must be >= 2')
-    edge_file, vertex_file = sys.argv[2], sys.argv[3]
-    avenue = n // 2
-
-    def vid(i, j):  # junction in column i, row j (1-based ids)
-        return 1 + i + n * j
-
-    def alpha(is_row, index):
-        return 2 if index == avenue else 1
-
-    edges = []
-
-    def street(a, b, al, initial='0.1'):
-        edges.append((a, b, al, initial, '', ''))
-
-    def inflow(b, al, phase):
-        # density alpha (0.12 + 0.3 exp(-((t - 2)/0.8)^2)), a little later
-        # on every other street
-        t0 = 2 + 0.25 * phase
-        g = f'{al}*(0.12 + 0.3*exp(-((t - {t0:g})/0.8)^2))'
-        edges.append(('free', b, al, f'{0.1 * al:g}', 'dirichlet', g))
-
-    def outflow(a, al):
-        # the exits are narrower (70 % of the street's capacity): at the rush
-        # hour the traffic jams back into the grid from them
-        edges.append((a, 'free', f'{0.7 * al:g}', f'{0.07 * al:g}', 'outflow', ''))
-
-    for j in range(n):  # rows: even eastbound, odd westbound
-        al = alpha(True, j)
-        cols = list(range(n)) if j % 2 == 0 else list(range(n - 1, -1, -1))
-        inflow(vid(cols[0], j), al, j % 2)
-        for a, b in zip(cols, cols[1:]):
-            street(vid(a, j), vid(b, j), al, f'{0.1 * al:g}')
-        outflow(vid(cols[-1], j), al)
-    for i in range(n):  # columns: even northbound, odd southbound
-        al = alpha(False, i)
-        rows = list(range(n)) if i % 2 == 0 else list(range(n - 1, -1, -1))
-        inflow(vid(i, rows[0]), al, (i + 1) % 2)
-        for a, b in zip(rows, rows[1:]):
-            street(vid(i, a), vid(i, b), al, f'{0.1 * al:g}')
-        outflow(vid(i, rows[-1]), al)
-
+def write_grid(n, edge_file, vertex_file):
+    """The grid's two files; returns the number of edges."""
+    vid = lambda i, j: 1 + i + n * j  # the junction in column i, row j (1-based ids)
+    edges = []  # (from, to, alpha, initial density, far end, far-end data)
+    for rows in (True, False):  # the rows, even ones eastbound; the columns, even ones northbound
+        for k in range(n):
+            order = range(n) if k % 2 == 0 else range(n - 1, -1, -1)
+            street = [vid(m, k) if rows else vid(k, m) for m in order]
+            al = 2 if k == n // 2 else 1
+            # inflow: density alpha (0.12 + 0.3 exp(-((t - t0)/0.8)^2)), t0 a little later on every other street
+            t0 = 2 + 0.25 * (k % 2 if rows else (k + 1) % 2)
+            edges.append(('free', street[0], al, f'{0.1 * al:g}', 'dirichlet',
+                          f'{al}*(0.12 + 0.3*exp(-((t - {t0:g})/0.8)^2))'))
+            edges += [(a, b, al, f'{0.1 * al:g}', '', '') for a, b in zip(street, street[1:])]
+            # the exits are narrower (70 % of the street's capacity): at the rush
+            # hour the traffic jams back into the grid from them
+            edges.append((street[-1], 'free', f'{0.7 * al:g}', f'{0.07 * al:g}', 'outflow', ''))
     with open(edge_file, 'w') as f:
         f.write(f'# a {n} x {n} city grid (contrib/make_network_grid.py {n})\n')
         f.write('id,from,to,length,flux,parameter,initial,far_end,far_end_data\n')
@@ -72,10 +42,14 @@ def main():
     with open(vertex_file, 'w') as f:
         f.write(f'# the junctions of the {n} x {n} city grid\n')
         f.write('id,x,y\n')
-        for j in range(n):
-            for i in range(n):
-                f.write(f'{vid(i, j)},{i},{j}\n')
-    print(f'{edge_file}: {len(edges)} edges, {vertex_file}: {n * n} junctions')
+        f.writelines(f'{vid(i, j)},{i},{j}\n' for j in range(n) for i in range(n))
+    return len(edges)
 
 
-main()
+if __name__ == '__main__':
+    if len(sys.argv) != 4:
+        sys.exit(__doc__)
+    if int(sys.argv[1]) < 2:
+        sys.exit('N must be >= 2')
+    n_edges = write_grid(int(sys.argv[1]), sys.argv[2], sys.argv[3])
+    print(f'{sys.argv[2]}: {n_edges} edges, {sys.argv[3]}: {int(sys.argv[1]) ** 2} junctions')

@@ -17,6 +17,7 @@ true L1 norm over all edges and the vertex cell at T.
 import argparse
 import math
 import os
+import types
 
 import numpy as np
 
@@ -46,35 +47,36 @@ def traffic(alpha):
     return f, fp, F
 
 
-class Example:
+def const(c):
+    return lambda x: c + 0 * x
+
+
+def example(name, T, c0, edges, exact, breaks, vertex, init_breaks=lambda k: []):
     """edges: list of (kind, flux, initial(x), far_end) with kind in/out/loop,
     far_end None (zero gradient) or a Dirichlet value; exact(k, x, t) vector
-    in x; breaks(k, t); vertex(t); c0; T."""
+    in x; breaks(k, t) and init_breaks(k): its discontinuities on edge k;
+    vertex(t); the vertex starts at c0; T the final time."""
+    return types.SimpleNamespace(name=name, T=T, c0=c0, edges=edges, exact=exact, breaks=breaks, vertex=vertex,
+                                 init_breaks=init_breaks)
 
 
 def example_7_1():
-    e = Example()
     s1 = (2 + SQRT2) / 2
     t1 = 0.5 / s1
     c1 = math.sqrt(5.0 / 3.0)
     s2 = (1 + c1) / 2
-    e.name, e.T, e.c0 = '7.1', 0.7, 1.0
-    e.edges = [('in', burgers(), lambda x: np.where(x < 0.5, 2.0, SQRT2), 2.0),
-               ('loop', burgers(), lambda x: np.ones_like(x), None),
-               ('out', burgers(), lambda x: np.ones_like(x), None),
-               ('out', burgers(), lambda x: np.ones_like(x), None)]
-    e.exact = lambda k, x, t: (np.where(x < 0.5 + s1 * t, 2.0, SQRT2) if k == 0 else
-                               np.where((t > t1) & (x < s2 * (t - t1)), c1, 1.0))
-    e.breaks = lambda k, t: [0.5 + s1 * t] if k == 0 else ([s2 * (t - t1)] if t > t1 else [])
-    e.init_breaks = lambda k: [0.5] if k == 0 else []
-    e.vertex = lambda t: 1.0 if t < t1 else c1
-    return e
+    b = burgers()
+    return example('7.1', 0.7, 1.0,
+                   [('in', b, lambda x: np.where(x < 0.5, 2.0, SQRT2), 2.0), ('loop', b, const(1.0), None),
+                    ('out', b, const(1.0), None), ('out', b, const(1.0), None)],
+                   lambda k, x, t: (np.where(x < 0.5 + s1 * t, 2.0, SQRT2) if k == 0 else
+                                    np.where((t > t1) & (x < s2 * (t - t1)), c1, 1.0)),
+                   lambda k, t: [0.5 + s1 * t] if k == 0 else ([s2 * (t - t1)] if t > t1 else []),
+                   lambda t: 1.0 if t < t1 else c1, lambda k: [0.5] if k == 0 else [])
 
 
 def example_7_2():
-    e = Example()
     c0 = (3 - math.sqrt(7.0)) / 2
-    e.name, e.T, e.c0 = '7.2', 0.2, c0
 
     def exact(k, x, t):
         if k < 2:
@@ -85,38 +87,27 @@ def example_7_2():
         if k == 3:
             return c0 + 0 * x
         return np.where(x < (3 - c0) * t, c0, 1.0)
-    e.edges = [('in', traffic(1.0), lambda x: 0.5 + 0 * x, None),
-               ('in', traffic(1.0), lambda x: 0.5 + 0 * x, None),
-               ('out', traffic(2.0), lambda x: 0 * x, None),
-               ('out', traffic(4.0), lambda x: c0 + 0 * x, None),
-               ('out', traffic(4.0), lambda x: 1 + 0 * x, None)]
-    e.exact = exact
-    e.breaks = lambda k, t: ([(4 - 4 * c0) * t, 4 * t] if k == 2 else
-                             [(3 - c0) * t] if k == 4 else [])
-    e.init_breaks = lambda k: []
-    e.vertex = lambda t: c0
-    return e
+    return example('7.2', 0.2, c0,
+                   [('in', traffic(1.0), const(0.5), None), ('in', traffic(1.0), const(0.5), None),
+                    ('out', traffic(2.0), const(0), None), ('out', traffic(4.0), const(c0), None),
+                    ('out', traffic(4.0), const(1), None)],
+                   exact, lambda k, t: ([(4 - 4 * c0) * t, 4 * t] if k == 2 else [(3 - c0) * t] if k == 4 else []),
+                   lambda t: c0)
 
 
 def example_7_3():
-    e = Example()
-    e.name, e.T, e.c0 = '7.3', 0.5, 2.0 / 3.0
     lin = linear(1.0)
-    e.edges = [('in', lin, lambda x: np.where(x < 0.8, 2.0, 1.0), 2.0),
-               ('in', lin, lambda x: 1 + 0 * x, 1.0)] + \
-              [('out', lin, lambda x: 2.0 / 3.0 + 0 * x, 2.0 / 3.0)] * 3
-    e.exact = lambda k, x, t: (np.where(x < 0.8 + t, 2.0, 1.0) if k == 0 else
-                               1 + 0 * x if k == 1 else np.where(x < t - 0.2, 1.0, 2.0 / 3.0))
-    e.breaks = lambda k, t: [0.8 + t] if k == 0 else [] if k == 1 else [t - 0.2]
-    e.init_breaks = lambda k: [0.8] if k == 0 else []
-    e.vertex = lambda t: 2.0 / 3.0 if t < 0.2 else 1.0
-    return e
+    return example('7.3', 0.5, 2.0 / 3.0,
+                   [('in', lin, lambda x: np.where(x < 0.8, 2.0, 1.0), 2.0), ('in', lin, const(1), 1.0)] +
+                   [('out', lin, const(2.0 / 3.0), 2.0 / 3.0)] * 3,
+                   lambda k, x, t: (np.where(x < 0.8 + t, 2.0, 1.0) if k == 0 else
+                                    1 + 0 * x if k == 1 else np.where(x < t - 0.2, 1.0, 2.0 / 3.0)),
+                   lambda k, t: [0.8 + t] if k == 0 else [] if k == 1 else [t - 0.2],
+                   lambda t: 2.0 / 3.0 if t < 0.2 else 1.0, lambda k: [0.8] if k == 0 else [])
 
 
 def example_7_4():
-    e = Example()
     c0 = math.sqrt(2.0 / 3.0)
-    e.name, e.T, e.c0 = '7.4', 0.3, c0
 
     def exact(k, x, t):
         if k < 2:
@@ -128,33 +119,24 @@ def example_7_4():
         fan = x / t if t > 0 else 0 * x
         return np.where(x < c0 * t, c0, np.where(x < 2 * t, fan, 2.0))
     b = burgers()
-    e.edges = [('in', b, lambda x: 1 + 0 * x, None), ('in', b, lambda x: 1 + 0 * x, None),
-               ('out', b, lambda x: 0 * x, None), ('out', b, lambda x: c0 + 0 * x, None),
-               ('out', b, lambda x: 2 + 0 * x, None)]
-    e.exact = exact
-    e.breaks = lambda k, t: ([0.5 * c0 * t] if k == 2 else [c0 * t, 2 * t] if k == 4 else [])
-    e.init_breaks = lambda k: []
-    e.vertex = lambda t: c0
-    return e
+    return example('7.4', 0.3, c0,
+                   [('in', b, const(1), None), ('in', b, const(1), None), ('out', b, const(0), None),
+                    ('out', b, const(c0), None), ('out', b, const(2), None)],
+                   exact, lambda k, t: ([0.5 * c0 * t] if k == 2 else [c0 * t, 2 * t] if k == 4 else []),
+                   lambda t: c0)
 
 
 def example_7_5():
-    e = Example()
     c0, c1 = math.sqrt(2.0 / 3.0), math.sqrt(5.0 / 3.0)
     t1, s = 0.2 / 1.5, 0.5 * (c0 + c1)
-    e.name, e.T, e.c0 = '7.5', 0.5, c0
     b = burgers()
-    e.edges = [('in', b, lambda x: np.where(x < 0.8, 2.0, 1.0), 2.0),
-               ('in', b, lambda x: 1 + 0 * x, 1.0)] + \
-              [('out', b, lambda x: c0 + 0 * x, c0)] * 3
-    e.exact = lambda k, x, t: (np.where(x < 0.8 + 1.5 * t, 2.0, 1.0) if k == 0 else
-                               1 + 0 * x if k == 1 else
-                               np.where((t > t1) & (x < s * (t - t1)), c1, c0))
-    e.breaks = lambda k, t: ([0.8 + 1.5 * t] if k == 0 else [] if k == 1 else
-                             [s * (t - t1)] if t > t1 else [])
-    e.init_breaks = lambda k: [0.8] if k == 0 else []
-    e.vertex = lambda t: c0 if t < t1 else c1
-    return e
+    return example('7.5', 0.5, c0,
+                   [('in', b, lambda x: np.where(x < 0.8, 2.0, 1.0), 2.0), ('in', b, const(1), 1.0)] +
+                   [('out', b, const(c0), c0)] * 3,
+                   lambda k, x, t: (np.where(x < 0.8 + 1.5 * t, 2.0, 1.0) if k == 0 else
+                                    1 + 0 * x if k == 1 else np.where((t > t1) & (x < s * (t - t1)), c1, c0)),
+                   lambda k, t: ([0.8 + 1.5 * t] if k == 0 else [] if k == 1 else [s * (t - t1)] if t > t1 else []),
+                   lambda t: c0 if t < t1 else c1, lambda k: [0.8] if k == 0 else [])
 
 
 EXAMPLES = {'7.1': example_7_1, '7.2': example_7_2, '7.3': example_7_3, '7.4': example_7_4,

@@ -1,29 +1,131 @@
 #!/usr/bin/python3
-"""Plot 1D profile-NNNN.csv files of one or more runs.
+"""Profiles of runs along x (RUN: a run's output directory, RUN:label names it):
 
-    contrib/plot_profiles.py OUT.png --column stress RUNDIR[:label] [RUNDIR[:label] ...]
-        [--times 80,160,240] [--xlim 0,300] [--title TEXT]
+  plot_profiles.py runs OUT.png RUN... [--column stress] [--times 80,160] [--xlim 0,300] [--title T]
+      a column of the 1D profiles of the runs, all but t = 0 (or those at --times);
+  plot_profiles.py layered OUT.png --time 240 [--xlim 160,220] [--title T] REF RUN...
+      strain and stress of the layered strip at one time (doc/layered_strip.md):
+      the first run as the solid reference line, the others as markers;
+  plot_profiles.py slice OUT.png RUN...
+      case (c) of the layered strip: stress and strain on y = 5, a panel per time;
+  plot_profiles.py solitary OUT.png [--times 840,1500,2850] [--peaks 4] RUN...
+      case (b'): the stress at the times, a panel per time, and a markdown table of
+      the highest peaks (local maxima above 5 % of the largest, one per 5 length
+      units of the periodic [0, 300));
+  plot_profiles.py edges OUT.png RUN [--snapshot N] [--title T]
+      a network run's edge profiles (default the last snapshot), a panel per edge,
+      against the exact solution if the run has it, the vertex value at its end.
+"""
+import numpy as np
 
-Every profile of a run but t = 0 (or those at --times) is drawn; several runs
-are overlaid with their labels."""
-from granular_dg import outputs, parser, plot
+from granular_dg import main, outputs, plot
 
-p = parser(__doc__)
-p.add_argument("output")
-p.add_argument("runs", nargs="+", help="RUNDIR or RUNDIR:label")
-p.add_argument("--column", default="stress")
-p.add_argument("--times", default="")
-p.add_argument("--xlim", default="")
-p.add_argument("--title", default="")
-a = p.parse_args()
-times = [float(t) for t in a.times.split(",")] if a.times else None
-fig, ax = plot.subplots(figsize=(10, 4))
-for i, run in enumerate(a.runs):
-    d, name = plot.split_run(run)
-    for t in outputs.profiles(d):
-        if t.time != 0 and (not times or any(abs(t.time - s) < 1e-9 for s in times)):
-            ax.plot(t["x"], t[a.column], ["-", "--", ":", "-."][i % 4], lw=1, label="%s t=%g" % (name, t.time))
-if a.xlim:
-    ax.set_xlim(*[float(v) for v in a.xlim.split(",")])
-plot.label(ax, "x", a.column, a.title, legend=7)
-plot.save(fig, a.output, dpi=120)
+STYLES = ["-", "--", ":", "-."]
+
+
+def numbers(text):
+    return [float(v) for v in text.split(",")] if text else []
+
+
+def runs(a):
+    fig, ax = plot.subplots(figsize=(10, 4))
+    for i, (d, name) in enumerate(map(plot.split_run, a.runs)):
+        for t in outputs.profiles(d):
+            if t.time != 0 and (not a.times or any(abs(t.time - s) < 1e-9 for s in numbers(a.times))):
+                ax.plot(t["x"], t[a.column], STYLES[i % 4], lw=1, label="%s t=%g" % (name, t.time))
+    if a.xlim:
+        ax.set_xlim(*numbers(a.xlim))
+    plot.label(ax, "x", a.column, a.title, legend=7)
+    plot.save(fig, a.out, dpi=120)
+
+
+def layered(a):
+    lo, hi = numbers(a.xlim) or (-np.inf, np.inf)
+    fig, ax = plot.subplots(1, 2, figsize=(12, 4))
+    for i, (d, name) in enumerate(map(plot.split_run, a.runs)):
+        t = outputs.profile_at(d, a.time)
+        keep = (t["x"] >= lo) & (t["x"] <= hi)
+        style = dict(color="k", lw=1) if i == 0 else dict(ls="none", marker="ox+s^"[(i - 1) % 5], ms=3, mfc="none")
+        for k, column in enumerate(("strain", "stress")):
+            ax[k].plot(t["x"][keep], t[column][keep], label=name, **style)
+    for k, column in enumerate(("strain", "stress")):
+        plot.label(ax[k], "x", column, legend=7)
+        if a.xlim:
+            ax[k].set_xlim(lo, hi)
+    fig.suptitle(a.title or "t = %g" % a.time)
+    plot.save(fig, a.out)
+
+
+def slices(a):
+    runs = [plot.split_run(r) for r in a.runs]
+    n = len(outputs.slices(runs[0][0]))
+    fig, axes = plot.subplots(n, 1, figsize=(10, 2.3 * n), sharex=True, squeeze=False)
+    for k, (d, name) in enumerate(runs):
+        for ax, (t, s) in zip(axes[:, 0], sorted(outputs.slices(d).items())):
+            ax.plot(s["x"], s["stress"], "-" if k == 0 else "--", lw=1, label="%s stress" % name)
+            ax.plot(s["x"], s["strain"], ":", lw=1, label="%s strain" % name)
+            plot.label(ax, title="y = 5, t = %g" % t, size=9)
+    axes[0, 0].legend(fontsize=8, ncol=2)
+    axes[-1, 0].set_xlabel("x")
+    plot.save(fig, a.out)
+
+
+def peaks(x, s, n):
+    """The n highest local maxima (height, position), highest first, one per
+    5 length units periodically (a solitary wave spans several layers; the
+    layering modulates the stress within it)."""
+    i = np.nonzero((s[1:-1] > s[:-2]) & (s[1:-1] >= s[2:]) & (s[1:-1] > 0.05 * s.max()))[0] + 1
+    kept = []
+    for k in i[np.argsort(-s[i])]:
+        if len(kept) < n and all(min(abs(x[k] - x[j]), 300 - abs(x[k] - x[j])) > 5 for j in kept):
+            kept.append(k)
+    return [(s[k], x[k]) for k in kept]
+
+
+def solitary(a):
+    times = numbers(a.times)
+    fig, axes = plot.subplots(len(times), 1, figsize=(10, 2.6 * len(times)), sharex=True, squeeze=False)
+    print("| run | t | peaks: stress height @ x |\n|---|---|---|")
+    for ax, t in zip(axes[:, 0], times):
+        for k, (d, name) in enumerate(map(plot.split_run, a.runs)):
+            x, s = (outputs.profile_at(d, t, rtol=1e-6)[c] for c in ("x", "stress"))
+            ax.plot(x, s, "-" if k == 0 else "--", lw=1.0 if k == 0 else 0.9, label=name)
+            print("| %s | %g | %s |" % (name, t, ", ".join("%.4f @ %.2f" % q for q in peaks(x, s, a.peaks))))
+        plot.label(ax, y="stress", title="t = %g" % t, size=9)
+    axes[0, 0].legend(fontsize=8)
+    axes[-1, 0].set_xlabel("x (periodic, length 300)")
+    plot.save(fig, a.out)
+
+
+def edges(a):
+    found = outputs.edge_profiles(a.run, a.snapshot)
+    fig, axes = plot.subplots(1, len(found), figsize=(3.1 * len(found), 2.9), sharey=True, squeeze=False)
+    for ax, t in zip(axes[0], found):
+        name, rest = t.comments[1].split(":", 1)  # "Edge 2: loop, ..."
+        direction = rest.split(",")[0].strip()
+        if "exact" in t:
+            ax.plot(t["x"], t["exact"], "k-", lw=1.0, label="exact")
+        ax.plot(t["x"], t["u"], "-", color="tab:blue", lw=1.2, label="numerical")
+        # the vertex value at the vertex end(s) of the edge
+        ends = [max(t["x"])] * (direction in ("in", "loop")) + [min(t["x"])] * (direction in ("out", "loop"))
+        for e in ends:
+            ax.plot([e], [t.value("vertex value")], "o", color="tab:red", ms=5, label="vertex $u_0$")
+        plot.label(ax, "x", title="%s (%s)" % (name.strip(), direction), size=9)
+    axes[0, 0].set_ylabel("u")
+    axes[0, 0].legend(fontsize=7, loc="best")
+    fig.suptitle((a.title + ", " if a.title else "") + "t = %g" % found[0].time, fontsize=10)
+    plot.save(fig, a.out, dpi=130, say=True)
+
+
+if __name__ == "__main__":
+    title, xlim = ("--title", dict(default="")), ("--xlim", dict(default=""))
+    main(__doc__, {
+        "runs": (runs, ["out", ("runs", dict(nargs="+")), ("--column", dict(default="stress")),
+                        ("--times", dict(default="")), xlim, title]),
+        "layered": (layered, ["out", ("runs", dict(nargs="+")), ("--time", dict(type=float, required=True)), xlim,
+                              title]),
+        "slice": (slices, ["out", ("runs", dict(nargs="+"))]),
+        "solitary": (solitary, ["out", ("runs", dict(nargs="+")), ("--times", dict(default="840,1500,2850")),
+                                ("--peaks", dict(type=int, default=4))]),
+        "edges": (edges, ["out", "run", ("--snapshot", dict(type=int, default=-1, help="index (default: the last)")),
+                          title])})

@@ -1,36 +1,25 @@
 #!/usr/bin/python3
-"""Work precision of the time integrators (Time stepping/scheme): error
-against CPU time for SSP-RK3 and deal.II's low-storage schemes, each at 0.95
-of its CFL limit for the degree (the table of dg::cfl_limit in
-source/dg/parameters.cc, read from there), on the smooth linear wave of the
-layered-strip scene with its exact solution, in 1D (prm/elasticity_linear_wave.prm,
-line engine, to t = 10) and 2D (tests/hardening/linear_wave_2d.prm, MatrixFree,
-to t = 2), P2 and P3, meshes refined by 2.
+"""Work precision of the time integrators (doc/study/README.md, "Time
+integrators"): the L2 error against CPU time of SSP-RK3 and deal.II's
+low-storage schemes, each at 0.95 of its CFL limit for the degree (the
+program's table, dg::cfl_limit), P2 and P3, on the smooth linear wave of the
+layered strip in 1D and 2D (CASES: case, final time, meshes):
 
     /usr/bin/python3 contrib/scheme_study.py BUILD_DIR OUT_DIR
 
-writes OUT_DIR/schemes.csv (one row per run), schemes-1d.png, schemes-2d.png
-and schemes.md (the cheapest scheme and degree per target error). About
-3 min on one core; runs one process at a time.
+writes OUT_DIR/schemes.csv (a row per run), schemes-1d.png, schemes-2d.png and
+schemes.md (the cheapest scheme and degree per target error); one process at a time.
 """
 import os
-import re
 import tempfile
 
 from granular_dg import outputs, parser, plot
-from granular_dg.run import ROOT, run_case
+from granular_dg.run import cfl_limits, run_case
 
 SCHEMES = ["ssp_rk3", "lsrk_5_4", "lsrk_7_4", "lsrk_9_5"]
 CASES = {"1d": ("prm/elasticity_linear_wave.prm", 10., [16, 32, 64, 128, 256, 512]),
          "2d": ("tests/hardening/linear_wave_2d.prm", 2., [8, 16, 32, 64])}
 TARGETS = [1e-4, 1e-6, 1e-8]
-
-
-def cfl_limits():
-    """{scheme: [limit for p = 0..4]} from the program's table."""
-    with open(os.path.join(ROOT, "source/dg/parameters.cc")) as f:
-        rows = re.findall(r"\{([\d.,\s]+)\},?\}?;?\s*// (\w+)", f.read())
-    return {name: [float(x) for x in values.split(",")] for values, name in rows}
 
 
 def scheme_rows(build, runs, case, scheme, degree, cfl):

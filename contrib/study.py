@@ -1,84 +1,59 @@
 #!/usr/bin/python3
-"""Speed against accuracy across the scenes: work-precision charts (SCENES
-below), stability maps CFL x degree x (flux, limiter) with the limits found by
-bisection (STABILITY), the cheapest configuration reaching two target errors
-per scene, and where the methods fail (study_failures.py); the files are
-listed in doc/study/README.md.
+"""Speed against accuracy across the scenes (doc/study/README.md lists the
+files): work-precision charts (SCENES), stability maps CFL x degree x (flux,
+limiter) with the limits found by bisection (STABILITY), the cheapest
+configuration reaching two target errors per scene, and where the methods
+fail (study_failures.py).
 
     /usr/bin/python3 contrib/study.py BUILD_DIR OUT_DIR [--quick] [--jobs N]
         [--only scene,...] [--skip-work-precision] [--skip-stability] [--skip-failures]
 
 Runs go to OUT_DIR/runs/, --jobs at a time (default 2), and are reused when
 they are there (delete them to rerun); the charted CPU times are those of
-each process.
-
-Classification of a stability run (fixed mesh, to the final time):
-  blown up      exit 3 with a non-finite state, or an error > the map's
-                blow-up level (1 for the O(0.1-1) data of the exact-solution
-                cases; 100 for the layered case, whose reference strain has
-                L1 norm 11.7, the wall displacement at t = 50);
-  inadmissible  exit 3 naming another admissibility test (negative sigma',
-                the hopper's loss of hyperbolicity);
-  oscillatory   completed, but: for an energy-stable case (energy=True: the
-                linear wave with the dissipative LLF flux, no limiter) the
-                discrete energy grew; otherwise the error is > 2 e0, e0 = the
-                error of the same degree and choice at the smallest CFL of the
-                grid (a limiter keeps such a run bounded, the instability shows
-                as lost accuracy);
-  stable        completed, otherwise;
-  refused       exit 2: the program's input check refuses the run.
-The limit is the largest stable CFL, bisected between the largest stable and
-the smallest non-stable grid value (relative width 5 %, 15 % with --quick).
-The grid: CFL = f/(2p+1), f in {0.5, 1, 1.5, 2, 3} (the linear wave: 0.25 to
-3), at most 1 (the program's range of the CFL number); in the full study,
-while every run is stable, on with f = 5, 8, 12 (limited schemes stay bounded
-far beyond the linear limit).
+each process. A stability map runs the grid CFL = f/(2p+1), at most 1 (the
+program's range), f in DEFAULT_FACTORS or the map's own (in the full study on
+with EXTEND_FACTORS while every run is stable: limited schemes stay bounded
+far beyond the linear limit), then bisects the limit, the largest stable CFL,
+between the largest stable and the smallest non-stable value to a relative
+width of 5 % (15 % with --quick); classify() names the states.
 """
 import math
 import os
 import sys
-import threading
+import textwrap
 import time
 
 from granular_dg import outputs, parser, plot
 from granular_dg.compare import stress_l1
-from granular_dg.run import NO_SNAPSHOTS, finished, load, pmap, run_case, tag
+from granular_dg.outputs import select
+from granular_dg.run import NO_SNAPSHOTS, Runs, load, tag
 
 import study_failures
+from study_failures import LINEAR_RK3, NAN, strain_l1
 
 plt = plot.pyplot()
-# SSP-RK3 with upwind DG of degree p on u_t + u_x = 0: the linear stability
-# limit of nu = a dt/h (Fourier analysis, contrib/dg_cfl_limits.py)
-LINEAR_RK3 = {0: 1.256373, 1: 0.409590, 2: 0.209754, 3: 0.130094, 4: 0.089687}
 
 
 def sum_l1(s, d):
     """Sum over the components of the L1 error against the exact solution."""
-    e = s.get("errors", {})
-    vals = [v[0] for k, v in e.items() if k.endswith("_l1_l2_linf")]
-    return sum(vals) if vals else float("nan")
-
-
-def strain_l1(s, d):
-    """L1 error of the strain (component 0) against the reference."""
-    return s.get("errors", {}).get("component_0_l1_l2_linf", [float("nan")])[0]
+    vals = [v[0] for k, v in s.get("errors", {}).items() if k.endswith("_l1_l2_linf")]
+    return sum(vals) if vals else NAN
 
 
 def network_l1(s, d):
-    return s.get("diagnostics", {}).get("l1_error", float("nan"))
+    return s.get("diagnostics", {}).get("l1_error", NAN)
 
 
 def hopper_radial(s, d):
     """Relative L1 error of (T_rr, T_rtheta)/r against the exact radial field
-    at 2001 equidistant theta (doc/hopper.md 4.7, contrib/hopper_runs.py)."""
+    at 2001 equidistant theta (doc/hopper.md 4.7, contrib/hopper.py precision)."""
     path = os.path.join(d, "stress-0001.csv")
-    return stress_l1(outputs.read_table(path)) if os.path.exists(path) else float("nan")
+    return stress_l1(outputs.read_table(path)) if os.path.exists(path) else NAN
 
 
 def cpu_loop(s):
-    if "cpu_time_loop_s" in s.get("diagnostics", {}):  # the network's own loop
-        return s["diagnostics"]["cpu_time_loop_s"]
-    return s.get("time_loop_cpu_s", float("nan"))
+    """The CPU time of the time loop (the network's own loop's)."""
+    return s.get("diagnostics", {}).get("cpu_time_loop_s", s.get("time_loop_cpu_s", NAN))
 
 
 HOPPER_QUIET = ["Hopper output/step series interval=0", "Hopper output/sample points=2001"]
@@ -226,38 +201,8 @@ QUICK_FACTORS = [0.5, 1.5]
 EXTEND_FACTORS = [5.0, 8.0, 12.0]
 
 
-class Context:
-    """What the parts of the study share: where to run and write, and how."""
-
-    def __init__(self, build, out, quick, jobs):
-        self.build, self.out, self.quick, self.jobs = build, out, quick, jobs
-        self.linear_rk3 = LINEAR_RK3
-        self.count, self.lock = {"executed": 0, "reused": 0}, threading.Lock()
-
-    def rundir(self, d):
-        return os.path.join(self.out, "runs", d)
-
-    def run(self, d, prm, sets):
-        """The run d of prm without snapshots with the --set overrides sets;
-        reused when it is there (delete it to rerun)."""
-        with self.lock:
-            self.count["reused" if finished(self.rundir(d)) else "executed"] += 1
-        return run_case(self.build, prm, self.rundir(d), NO_SNAPSHOTS + tuple(sets), reuse=True)
-
-    def pmap(self, f, items):
-        """f over items, --jobs at a time, results in order."""
-        return pmap(f, items, self.jobs)
-
-    def csv(self, name, rows):
-        outputs.write_csv(os.path.join(self.out, name + ".csv"), rows)
-
-    def save(self, fig, name, tight=True):
-        plot.save(fig, os.path.join(self.out, name + ".png"), "svg", tight=tight)
-
-
 def work_precision(ctx, name, sc):
-    degrees = sc["quick_degrees"] if ctx.quick else sc["degrees"]
-    cells = sc["quick_cells"] if ctx.quick else sc["cells"]
+    degrees = ctx.pick(sc, "degrees")
 
     def one(item):
         p, n = item
@@ -265,21 +210,21 @@ def work_precision(ctx, name, sc):
         run = ctx.run(os.path.join(name, "wp-p%d-n%d" % (p, n)), sc["prm"], sc["extra"] + [
             "Discretization/degree=%d" % p, "%s=%d" % (sc["mesh"], n), "Time stepping/CFL number=%.12g" % cfl])
         s = run.summary
-        e = sc["error"](s, run.directory) if run.code == 0 else float("nan")
+        e = sc["error"](s, run.directory) if run.code == 0 else NAN
         r = dict(scene=name, degree=p, cells=n, cfl=cfl, exit=run.code, error=e,
                  n_dofs=s.get("n_dofs", ""), steps=s.get("n_time_steps", ""),
                  time_loop_cpu_s=cpu_loop(s), run_wall_s=run.wall_s, load=s["_load"])
-        print("%s P%d n=%d: exit %d error %.3e cpu %.3g s" % (
-            name, p, n, run.code, e, r["time_loop_cpu_s"]), flush=True)
+        print("%s P%d n=%d: exit %d error %.3e cpu %.3g s" % (name, p, n, run.code, e, r["time_loop_cpu_s"]),
+              flush=True)
         return r
 
-    rows = ctx.pmap(one, [(p, n) for p in degrees for n in cells
+    rows = ctx.pmap(one, [(p, n) for p in degrees for n in ctx.pick(sc, "cells")
                           if n <= sc.get("max_cells", {}).get(p, n)])
     # blown up: exit 3, an error > 1, or an error above the coarser mesh's
     # (an instability growing: e.g. P4 above its CFL limit)
     for p in degrees:
         previous = float("inf")
-        for r in [r for r in rows if r["degree"] == p]:
+        for r in select(rows, degree=p):
             r["blown_up"] = int(r["exit"] != 0 or not (r["error"] <= min(1., previous)))
             previous = r["error"] if math.isfinite(r["error"]) else previous
     ctx.csv(name + "-work-precision", rows)
@@ -287,32 +232,33 @@ def work_precision(ctx, name, sc):
     for ax, key, label in ((axes[0], "time_loop_cpu_s", "CPU time of the time loop [s]"),
                            (axes[1], "run_wall_s", "wall time of the run [s]")):
         for p in degrees:
-            sel = [r for r in rows if r["degree"] == p and not r["blown_up"] and r["error"] > 0]
+            sel = [r for r in select(rows, degree=p) if not r["blown_up"] and r["error"] > 0]
             if sel:
-                ax.loglog([max(r[key], 1e-4) for r in sel], [r["error"] for r in sel], "o-",
-                          ms=4, label="P%d" % p)
+                ax.loglog([max(r[key], 1e-4) for r in sel], [r["error"] for r in sel], "o-", ms=4, label="P%d" % p)
         for t in sc["targets"]:
             ax.axhline(t, color="gray", lw=0.6, ls=":")
         plot.label(ax, label)
     plot.label(axes[0], y=sc["error_name"], legend=8, grid=0)
-    fig.suptitle("%s: error against the exact solution vs cost (%s, SSP-RK3)" % (name, sc["prm"]),
-                 fontsize=10)
+    fig.suptitle("%s: error against the exact solution vs cost (%s, SSP-RK3)" % (name, sc["prm"]), fontsize=10)
     ctx.save(fig, name + "-work-precision")
     return rows
 
 
-def energy_grew(d):
-    """Whether the discrete energy (timeseries.csv) grew from t = 0 to the end."""
-    e = outputs.timeseries(d)["energy"]
-    return not (e[-1] <= e[0] * (1 + 1e-10))
-
-
 def classify(code, err, e, e0, grew=None, blowup=1.0):
+    """The state of a stability run (fixed mesh, to the final time): blown up
+    (exit 3 with a non-finite state, or an error above the map's blow-up
+    level: 1 for the O(0.1-1) data of the exact-solution cases, 100 for the
+    layered case, whose reference strain has L1 norm 11.7, the wall
+    displacement at t = 50); inadmissible (exit 3 naming another
+    admissibility test: negative sigma', the hopper's loss of hyperbolicity);
+    oscillatory (completed, but the discrete energy grew in an energy-stable
+    case, energy=True: the linear wave with the LLF flux, no limiter; else
+    the error is > 2 e0, e0 the error of the same degree and choice at the
+    grid's smallest CFL: a limiter keeps such a run bounded, the instability
+    shows as lost accuracy); refused (exit 2: the program refuses the input);
+    stable otherwise."""
     if code == 3:  # the run failed: inadmissible or non-finite state
-        low = err.lower()
-        if "finite" in low or "nan" in low or "inf" in low:
-            return "blown up"
-        return "inadmissible"
+        return "blown up" if any(w in err.lower() for w in ("finite", "nan", "inf")) else "inadmissible"
     if code == 2:  # bad input: the program refuses the run
         return "refused"
     if code != 0:
@@ -321,37 +267,30 @@ def classify(code, err, e, e0, grew=None, blowup=1.0):
         return "blown up"
     if grew is not None:  # energy-stable scheme: growth is the instability
         return "oscillatory" if grew else "stable"
-    if e0 is not None and e > 2 * e0:
-        return "oscillatory"
-    return "stable"
+    return "oscillatory" if e0 is not None and e > 2 * e0 else "stable"
 
 
 def stability(ctx, name, sp):
     """One map: for every (choice, degree) the CFL grid f/(2p+1), then the
     bisection of the limit; the pairs run --jobs at a time."""
-    degrees = sp["quick_degrees"] if ctx.quick else sp["degrees"]
+    degrees = ctx.pick(sp, "degrees")
     choices = [sp["choices"][i] for i in sp["quick_choices"]] if ctx.quick else sp["choices"]
     if not choices or not degrees:
         return [], []
-    factors = sp.get("quick_factors", QUICK_FACTORS) if ctx.quick else \
-        sp.get("factors", DEFAULT_FACTORS)
+    factors = sp.get("quick_factors", QUICK_FACTORS) if ctx.quick else sp.get("factors", DEFAULT_FACTORS)
     width = 0.15 if ctx.quick else 0.05
-    cap = 1.0  # the program's range of Time stepping/CFL number: (0, 1]
     extra = sp["extra"] + (sp["setup"](ctx) if "setup" in sp else [])
     p0 = [sp["choices"][i] for i in sp.get("p0_choices", range(len(sp["choices"])))]
-    pairs = [(ci, p) for ci in range(len(choices)) for p in degrees if p > 0 or choices[ci] in p0]
 
     def pair(item):
-        ci, p = item
-        label, sets = choices[ci]
-        rows = []
+        (label, sets), p = item
+        index, rows = sp["choices"].index(item[0]), []
 
         def one(cfl, e0):
-            d = os.path.join(name, "st-c%d-p%d-cfl%s" % (sp["choices"].index(choices[ci]), p, tag(cfl)))
-            run = ctx.run(d, sp["prm"], extra + sets + [
+            run = ctx.run(os.path.join(name, "st-c%d-p%d-cfl%s" % (index, p, tag(cfl))), sp["prm"], extra + sets + [
                 "Discretization/degree=%d" % p, "%s=%d" % (sp["mesh"], sp["cells"]),
                 "Time stepping/CFL number=%.12g" % cfl, "Time stepping/check stability limit=false"])
-            e = sp["error"](run.summary, run.directory) if run.code == 0 else float("nan")
+            e = sp["error"](run.summary, run.directory) if run.code == 0 else NAN
             grew = energy_grew(run.directory) if run.code == 0 and sp.get("energy") else None
             c = classify(run.code, run.stderr, e, e0, grew, sp["blowup"])
             rows.append(dict(map=name, scene=sp["scene"], choice=label, degree=p, cfl=cfl, exit=run.code,
@@ -359,50 +298,44 @@ def stability(ctx, name, sp):
             print("%s [%s] P%d CFL %.4g: %s (error %.3e)" % (name, label, p, cfl, c, e), flush=True)
             return c, e
 
-        grid = sorted({min(cap, f / (2 * p + 1)) for f in factors})
-        e0 = None
-        states = []
-        for cfl in grid:
+        # the grid (the program's range of the CFL number is (0, 1]); e0: the
+        # error at its first CFL with a finite error
+        states, e0 = [], None
+        for cfl in sorted({min(1.0, f / (2 * p + 1)) for f in factors}):
             c, e = one(cfl, e0)
-            if e0 is None:
-                e0 = e if math.isfinite(e) else None
+            e0 = e if e0 is None and math.isfinite(e) else e0
             states.append((cfl, c))
         for f in ([] if ctx.quick else EXTEND_FACTORS):
-            cfl = min(cap, f / (2 * p + 1))
+            cfl = min(1.0, f / (2 * p + 1))
             if any(c != "stable" for _, c in states) or cfl <= states[-1][0]:
                 break
             states.append((cfl, one(cfl, e0)[0]))
-        grid = [cfl for cfl, _ in states]
         stable = [cfl for cfl, c in states if c == "stable"]
         lo = max(stable) if stable else None
         above = [cfl for cfl, c in states if c != "stable" and lo is not None and cfl > lo]
         hi = min(above) if above else None
-        if lo is not None and hi is not None:
-            while (hi - lo) / lo > width:
-                mid = 0.5 * (lo + hi)
-                c, _ = one(mid, e0)
-                if c == "stable":
-                    lo = mid
-                else:
-                    hi = mid
-        first_bad = [c for cfl, c in sorted((r["cfl"], r["state"]) for r in rows)
-                     if hi is not None and cfl >= hi]
-        limit = dict(map=name, scene=sp["scene"], choice=label, degree=p,
-                     cfl_limit=lo if lo is not None else "",
-                     first_unstable_cfl=hi if hi is not None else "",
-                     limit_times_2p_plus_1=lo * (2 * p + 1) if lo is not None else "",
-                     linear_rk3_limit=LINEAR_RK3[p],
-                     limit_over_linear=lo / LINEAR_RK3[p] if lo is not None else "",
-                     state_above=first_bad[0] if first_bad else
-                     "none up to CFL %.3g" % max(grid))
-        return rows, limit
+        while lo is not None and hi is not None and (hi - lo) / lo > width:
+            mid = 0.5 * (lo + hi)
+            lo, hi = (mid, hi) if one(mid, e0)[0] == "stable" else (lo, mid)
+        first_bad = [c for cfl, c in sorted((r["cfl"], r["state"]) for r in rows) if hi is not None and cfl >= hi]
+        none = lo is None
+        return rows, dict(map=name, scene=sp["scene"], choice=label, degree=p, cfl_limit="" if none else lo,
+                          first_unstable_cfl="" if hi is None else hi,
+                          limit_times_2p_plus_1="" if none else lo * (2 * p + 1), linear_rk3_limit=LINEAR_RK3[p],
+                          limit_over_linear="" if none else lo / LINEAR_RK3[p],
+                          state_above=first_bad[0] if first_bad else "none up to CFL %.3g" % max(states)[0])
 
-    results = ctx.pmap(pair, pairs)
-    rows = [r for rr, _ in results for r in rr]
-    limits = [l for _, l in results]
+    results = ctx.pmap(pair, [(c, p) for c in choices for p in degrees if p > 0 or c in p0])
+    rows, limits = [r for rr, _ in results for r in rr], [l for _, l in results]
     ctx.csv(name + "-stability", rows)
     stability_chart(ctx, name, sp, choices, degrees, rows, limits)
     return rows, limits
+
+
+def energy_grew(d):
+    """Whether the discrete energy (timeseries.csv) grew from t = 0 to the end."""
+    e = outputs.timeseries(d)["energy"]
+    return not (e[-1] <= e[0] * (1 + 1e-10))
 
 
 COLORS = {"stable": "tab:green", "oscillatory": "tab:orange", "inadmissible": "tab:purple",
@@ -412,7 +345,6 @@ MARKERS = {"stable": "o", "oscillatory": "s", "inadmissible": "D", "blown up": "
 
 
 def stability_chart(ctx, name, sp, choices, degrees, rows, limits):
-    import textwrap
     from matplotlib.ticker import FormatStrFormatter, LogLocator
     n = len(choices)
     panel, top, bottom = 0.28 * len(degrees) + 0.5, 0.55, 0.8  # inches
@@ -423,12 +355,12 @@ def stability_chart(ctx, name, sp, choices, degrees, rows, limits):
     handles = {}
     for ax, (label, _) in zip(axes[:, 0], choices):
         for state in COLORS:
-            sel = [r for r in rows if r["state"] == state and r["choice"] == label]
+            sel = select(rows, state=state, choice=label)
             if sel:
                 handles[state] = ax.scatter([r["cfl"] for r in sel], [r["degree"] for r in sel],
                                             c=COLORS[state], marker=MARKERS[state], s=24)
-        for l in limits:
-            if l["choice"] == label and l["cfl_limit"] != "":
+        for l in select(limits, choice=label):
+            if l["cfl_limit"] != "":
                 bounded = l["first_unstable_cfl"] != ""
                 key = "bisected limit" if bounded else "stable to the end of the grid"
                 handles[key], = ax.plot([l["cfl_limit"]] * 2, [l["degree"] - 0.38, l["degree"] + 0.38],
@@ -436,9 +368,8 @@ def stability_chart(ctx, name, sp, choices, degrees, rows, limits):
                 ax.annotate(("%.3g" if bounded else ">= %.3g") % l["cfl_limit"],
                             (l["cfl_limit"], l["degree"]), xytext=(3, 2), textcoords="offset points",
                             fontsize=6.5)
-        ran = sorted({r["degree"] for r in rows if r["choice"] == label})
-        handles["linear RK3-DG limit"], = ax.plot([LINEAR_RK3[p] for p in ran], ran, "b|",
-                                                   ms=11, mew=1.0)
+        ran = sorted({r["degree"] for r in select(rows, choice=label)})
+        handles["linear RK3-DG limit"], = ax.plot([LINEAR_RK3[p] for p in ran], ran, "b|", ms=11, mew=1.0)
         ax.set_yticks(degrees)
         ax.set_yticklabels(["P%d" % p for p in degrees], fontsize=7)
         ax.set_ylim(min(degrees) - 0.6, max(degrees) + 0.6)
@@ -473,7 +404,7 @@ def cheapest(ctx, all_rows):
     res = []
     for name, sc in SCENES.items():
         # completed runs that did not blow up (error <= 1)
-        rows = [r for r in all_rows if r["scene"] == name and not r["blown_up"]]
+        rows = [r for r in select(all_rows, scene=name) if not r["blown_up"]]
         for t in sc["targets"] if rows else []:
             ok = [r for r in rows if r["error"] <= t]
             if ok:
@@ -507,8 +438,7 @@ def main():
     ap.add_argument("--skip-stability", action="store_true")
     ap.add_argument("--skip-failures", action="store_true")
     a = ap.parse_args()
-    os.makedirs(a.out, exist_ok=True)
-    ctx = Context(os.path.abspath(a.build), os.path.abspath(a.out), a.quick, a.jobs)
+    ctx = Runs(a.build, a.out, a.quick, a.jobs, subdir="runs", sets=NO_SNAPSHOTS, formats=("svg",))
     only = a.only.split(",")
     l0, t0, c0 = load(), time.time(), os.times()
     parts = []

@@ -13,10 +13,14 @@ import os
 import numpy as np
 
 from granular_dg import outputs, plot
+from granular_dg.outputs import select
 from granular_dg.run import tag
 
 plt = plot.pyplot()
-
+NAN = float("nan")
+# SSP-RK3 with upwind DG of degree p on u_t + u_x = 0: the linear stability
+# limit of nu = a dt/h (Fourier analysis, contrib/dg_cfl_limits.py)
+LINEAR_RK3 = {0: 1.256373, 1: 0.409590, 2: 0.209754, 3: 0.130094, 4: 0.089687}
 LAYERS = 60            # layers of width 1 on [0, 60]
 LAYERED_T = 50         # the front is at x ~ 45 then: the outflow end is not reached
 # the limiters of these studies act in every cell (prm/layered_1d.prm and
@@ -29,13 +33,23 @@ def fmt(x, digits=3):
     return ("%." + str(digits) + "g") % x if isinstance(x, (int, float)) and math.isfinite(x) else "-"
 
 
+def strain_l1(s, d=None):
+    """L1 error of the strain (component 0) against the reference."""
+    return s.get("errors", {}).get("component_0_l1_l2_linf", [NAN])[0]
+
+
+def diagnostics(s, *keys):
+    """The named entries of summary.json's diagnostics (NaN where missing)."""
+    dg = s.get("diagnostics", {})
+    return {k: dg.get(k, NAN) for k in keys}
+
+
 def layered_reference_sets(ctx):
     """The reference of the shortened layered case: P3, impedance flux, no
     limiter, 32 cells per layer (8 with --quick), CFL 0.1; returns the
     --set that makes a run compute its errors against it."""
     per_layer = 8 if ctx.quick else 32
-    d = "layered_reference/p3-n%d" % per_layer
-    run = ctx.run(d, "prm/layered_1d.prm", LAYERED_SHORT + [
+    run = ctx.run("layered_reference/p3-n%d" % per_layer, "prm/layered_1d.prm", LAYERED_SHORT + [
         "Mesh/cells x=%d" % (LAYERS * per_layer), "Discretization/degree=3",
         "Discretization/numerical flux=impedance", "Limiter/scheme=none",
         "Time stepping/CFL number=0.1", "Output/write modes=true"])
@@ -44,62 +58,59 @@ def layered_reference_sets(ctx):
     return ["Exact solution/reference file=" + outputs.latest(run.directory, "modes")]
 
 
-def diagnostics(s, *keys):
-    """The named entries of summary.json's diagnostics (NaN where missing)."""
-    dg = s.get("diagnostics", {})
-    return {k: dg.get(k, float("nan")) for k in keys}
-
-
 # ---------------------------------------------------------------- interfaces
-INTERFACE_CONFIGS = [("LLF on (eps, m) + componentwise", "local_lax_friedrichs", "componentwise"),
-                     ("LLF on (eps, m), no limiter", "local_lax_friedrichs", "none"),
-                     ("impedance + flux_variables", "impedance", "flux_variables"),
-                     ("impedance, no limiter", "impedance", "none")]
+INTERFACE_CONFIGS = [("LLF on (eps, m) + componentwise", "local_lax_friedrichs", "componentwise", "tab:red"),
+                     ("LLF on (eps, m), no limiter", "local_lax_friedrichs", "none", "tab:orange"),
+                     ("impedance + flux_variables", "impedance", "flux_variables", "tab:blue"),
+                     ("impedance, no limiter", "impedance", "none", "tab:green")]
 
 
 def interfaces(ctx):
     ref = layered_reference_sets(ctx)
-    degrees = [2] if ctx.quick else [1, 2]
-    per_layer = [2, 4] if ctx.quick else [2, 4, 8, 16]
-    items = [(c, p, n) for c in INTERFACE_CONFIGS for p in degrees for n in per_layer]
+    degrees, per_layer = ([2], [2, 4]) if ctx.quick else ([1, 2], [2, 4, 8, 16])
 
     def one(item):
-        (label, flux, limiter), p, n = item
-        d = "interfaces/%s-%s-p%d-n%d" % (flux, limiter, p, n)
-        run = ctx.run(d, "prm/layered_1d.prm", LAYERED_SHORT + ref + [
+        (label, flux, limiter, _), p, n = item
+        run = ctx.run("interfaces/%s-%s-p%d-n%d" % (flux, limiter, p, n), "prm/layered_1d.prm", LAYERED_SHORT + ref + [
             "Mesh/cells x=%d" % (LAYERS * n), "Discretization/degree=%d" % p,
             "Discretization/numerical flux=" + flux, "Limiter/scheme=" + limiter,
             "Time stepping/CFL number=%.12g" % (0.8 / (2 * p + 1))])
         s = run.summary
-        e = s.get("errors", {}).get("component_0_l1_l2_linf", [float("nan")])[0] if run.code == 0 \
-            else float("nan")
-        return dict(config=label, flux=flux, limiter=limiter, degree=p, cells_per_layer=n,
-                    exit=run.code, l1_strain_error=e,
+        return dict(config=label, flux=flux, limiter=limiter, degree=p, cells_per_layer=n, exit=run.code,
+                    l1_strain_error=strain_l1(s) if run.code == 0 else NAN,
                     **diagnostics(s, "interface_stress_jump_max", "interface_stress_jump_mean",
                                   "min_strain", "max_strain"),
-                    time_loop_cpu_s=s.get("time_loop_cpu_s", float("nan")),
+                    time_loop_cpu_s=s.get("time_loop_cpu_s", NAN),
                     final_time=s.get("final_time", ""), message=run.stderr[:160])
 
-    rows = ctx.pmap(one, items)
+    rows = ctx.pmap(one, [(c, p, n) for c in INTERFACE_CONFIGS for p in degrees for n in per_layer])
     ctx.csv("failure-interfaces", rows)
     fig, ax = plt.subplots(1, 2, figsize=(11, 4.2))
-    colors = {c[0]: k for c, k in zip(INTERFACE_CONFIGS, ["tab:red", "tab:orange", "tab:blue", "tab:green"])}
-    marks = {1: "o", 2: "s", 3: "^"}
-    for (label, _, _) in INTERFACE_CONFIGS:
+    notes = ["**interfaces** (layered strip [0, %d] to t = %g, L1 strain error against P3 "
+             "impedance at %d cells per layer; CFL 0.8/(2p+1)):" % (LAYERS, LAYERED_T, 8 if ctx.quick else 32)]
+    for label, _, _, color in INTERFACE_CONFIGS:
         for p in degrees:
-            sel = [r for r in rows if r["config"] == label and r["degree"] == p]
+            sel = select(rows, config=label, degree=p)
             ok = [r for r in sel if r["exit"] == 0]
-            ls = "--" if "LLF" in label else "-"
+            style = dict(marker={1: "o", 2: "s", 3: "^"}[p], color=color, ms=5)
             if ok:
-                ax[0].loglog([r["cells_per_layer"] for r in ok], [r["l1_strain_error"] for r in ok],
-                             ls, marker=marks[p], color=colors[label], ms=5, label="%s, P%d" % (label, p))
-                ax[1].loglog([r["cells_per_layer"] for r in ok],
-                             [r["interface_stress_jump_max"] for r in ok], ls, marker=marks[p],
-                             color=colors[label], ms=5)
+                x = [r["cells_per_layer"] for r in ok]
+                ls = "--" if "LLF" in label else "-"
+                ax[0].loglog(x, [r["l1_strain_error"] for r in ok], ls, label="%s, P%d" % (label, p), **style)
+                ax[1].loglog(x, [r["interface_stress_jump_max"] for r in ok], ls, **style)
             for r in sel:
                 if r["exit"] != 0:  # stopped: mark at the top of the left panel
                     ax[0].annotate("exit %d" % r["exit"], (r["cells_per_layer"], 1), fontsize=6,
-                                   color=colors[label], rotation=90)
+                                   color=color, rotation=90)
+            cells = ", ".join("%d: %s (jump %s)" % (r["cells_per_layer"], fmt(r["l1_strain_error"]),
+                                                    fmt(r["interface_stress_jump_max"]))
+                              if r["exit"] == 0 else "%d: exit %d at t = %s" % (
+                                  r["cells_per_layer"], r["exit"], fmt(r["final_time"], 4)) for r in sel)
+            ok = [r for r in ok if r["l1_strain_error"] > 0]
+            eoc = "; EOC finest pair %.2f" % (
+                math.log(ok[-2]["l1_strain_error"] / ok[-1]["l1_strain_error"]) /
+                math.log(ok[-1]["cells_per_layer"] / ok[-2]["cells_per_layer"])) if len(ok) >= 2 else ""
+            notes.append("  - %s, P%d, cells per layer %s%s" % (label, p, cells, eoc))
     ax[0].set_ylabel("L1 error of the strain at t = %g" % LAYERED_T)
     ax[1].set_ylabel("largest stress jump across an interface at t = %g" % LAYERED_T)
     for a in ax:
@@ -109,24 +120,6 @@ def interfaces(ctx):
     fig.suptitle("Naive LLF on (eps, m) against the interface-aware impedance flux at material "
                  "interfaces (layered strip, [0, %d], t = %g)" % (LAYERS, LAYERED_T), fontsize=9)
     ctx.save(fig, "failure-interfaces")
-
-    notes = ["**interfaces** (layered strip [0, %d] to t = %g, L1 strain error against P3 "
-             "impedance at %d cells per layer; CFL 0.8/(2p+1)):" % (
-                 LAYERS, LAYERED_T, 8 if ctx.quick else 32)]
-    for (label, _, _) in INTERFACE_CONFIGS:
-        for p in degrees:
-            sel = [r for r in rows if r["config"] == label and r["degree"] == p]
-            cells = ", ".join("%d: %s (jump %s)" % (r["cells_per_layer"], fmt(r["l1_strain_error"]),
-                                                    fmt(r["interface_stress_jump_max"]))
-                              if r["exit"] == 0 else "%d: exit %d at t = %s" % (
-                                  r["cells_per_layer"], r["exit"], fmt(r["final_time"], 4))
-                              for r in sel)
-            ok = [r for r in sel if r["exit"] == 0 and r["l1_strain_error"] > 0]
-            eoc = ""
-            if len(ok) >= 2:
-                eoc = "; EOC finest pair %.2f" % (math.log(ok[-2]["l1_strain_error"] / ok[-1]["l1_strain_error"]) /
-                                                  math.log(ok[-1]["cells_per_layer"] / ok[-2]["cells_per_layer"]))
-            notes.append("  - %s, P%d, cells per layer %s%s" % (label, p, cells, eoc))
     return notes
 
 
@@ -138,8 +131,7 @@ FRICTION = [("projection", ["Physics/friction=projection"]),
 
 
 def friction(ctx):
-    cells = [100, 400] if ctx.quick else [100, 200, 400, 800]
-    cfls = [0.05, 0.2] if ctx.quick else [0.025, 0.05, 0.1, 0.2]
+    cells, cfls = ([100, 400], [0.05, 0.2]) if ctx.quick else ([100, 200, 400, 800], [0.025, 0.05, 0.1, 0.2])
     variants = FRICTION[:2] if ctx.quick else FRICTION
     items = sorted({(v, n, 0.2) for v in range(len(variants)) for n in cells} |
                    {(v, 400, c) for v in range(len(variants)) for c in cfls})
@@ -151,22 +143,31 @@ def friction(ctx):
             "Mesh/cells=%d" % n, "Time stepping/CFL number=%.12g" % cfl])
         s, steps = run.summary, run.summary.get("n_time_steps", 0)
         return dict(friction=label, cells=n, cfl=cfl, exit=run.code,
-                    dt=s.get("final_time", 8.) / steps if steps else float("nan"),
+                    dt=s.get("final_time", 8.) / steps if steps else NAN,
                     **diagnostics(s, "velocity_sign_flips", "probe_strain_drift", "max_velocity"),
-                    time_loop_cpu_s=s.get("time_loop_cpu_s", float("nan")), message=run.stderr[:160])
+                    time_loop_cpu_s=s.get("time_loop_cpu_s", NAN), message=run.stderr[:160])
 
     rows = ctx.pmap(one, items)
     ctx.csv("failure-friction", rows)
     fig, ax = plt.subplots(2, 2, figsize=(11, 7))
-    styles = ["o-", "s--", "^:", "v-."]
     floor = {"velocity_sign_flips": 0.5, "probe_strain_drift": 1e-17}
+    notes = ["**friction** (column m = 1 on (0, 10), P2, characteristic limiter, t = 8; the probe "
+             "z = 0.5 is at rest from t = 3.3 in the exact solution):"]
     for v, (label, _) in enumerate(variants):
-        for row, (key, sel) in enumerate((("cells", [r for r in rows if r["friction"] == label and r["cfl"] == 0.2]),
-                                          ("dt", [r for r in rows if r["friction"] == label and r["cells"] == 400]))):
+        by_cells, by_dt = select(rows, friction=label, cfl=0.2), select(rows, friction=label, cells=400)
+        for row, (key, sel) in enumerate((("cells", by_cells), ("dt", by_dt))):
             sel = sorted([r for r in sel if r["exit"] == 0], key=lambda r: r[key])
-            for col, q in enumerate(("velocity_sign_flips", "probe_strain_drift")):
+            for col, q in enumerate(floor):
                 y = [max(abs(r[q]), floor[q]) for r in sel]
-                ax[row, col].loglog([r[key] for r in sel], y, styles[v], ms=5, label=label)
+                ax[row, col].loglog([r[key] for r in sel], y, ["o-", "s--", "^:", "v-."][v], ms=5, label=label)
+        joined = lambda sel, key, digits: "/".join(fmt(r[key], digits) for r in sel)
+        notes.append("  - %s, CFL 0.2, cells %s: sign flips %s; probe drift %s" % (
+            label, "/".join(str(r["cells"]) for r in by_cells),
+            "/".join(fmt(r["velocity_sign_flips"], 6) if r["exit"] == 0 else "exit %d" % r["exit"]
+                     for r in by_cells), joined(by_cells, "probe_strain_drift", 2)))
+        notes.append("    400 cells, dt %s: sign flips %s; probe drift %s; max v at t = 8 %s" % (
+            joined(by_dt, "dt", 3), joined(by_dt, "velocity_sign_flips", 6),
+            joined(by_dt, "probe_strain_drift", 2), joined(by_dt, "max_velocity", 2)))
     for row, (xl, key) in enumerate((("cells on (0, 10) (CFL 0.2, dt ~ dx)", "cells"),
                                      ("time step dt (400 cells)", "dt"))):
         ax[row, 0].set_ylabel("velocity sign flips")
@@ -179,20 +180,6 @@ def friction(ctx):
                  "of stuck material (strain drift)\nof the explicit treatments against the projection "
                  "(an exact 0 is drawn at 0.5 flips and 1e-17 drift)", fontsize=9)
     ctx.save(fig, "failure-friction")
-    notes = ["**friction** (column m = 1 on (0, 10), P2, characteristic limiter, t = 8; the probe "
-             "z = 0.5 is at rest from t = 3.3 in the exact solution):"]
-    for label, _ in variants:
-        sel = [r for r in rows if r["friction"] == label and r["cfl"] == 0.2]
-        notes.append("  - %s, CFL 0.2, cells %s: sign flips %s; probe drift %s" % (
-            label, "/".join(str(r["cells"]) for r in sel),
-            "/".join(fmt(r["velocity_sign_flips"], 6) if r["exit"] == 0 else "exit %d" % r["exit"] for r in sel),
-            "/".join(fmt(r["probe_strain_drift"], 2) for r in sel)))
-        sel = [r for r in rows if r["friction"] == label and r["cells"] == 400]
-        notes.append("    400 cells, dt %s: sign flips %s; probe drift %s; max v at t = 8 %s" % (
-            "/".join(fmt(r["dt"], 3) for r in sel),
-            "/".join(fmt(r["velocity_sign_flips"], 6) for r in sel),
-            "/".join(fmt(r["probe_strain_drift"], 2) for r in sel),
-            "/".join(fmt(r["max_velocity"], 2) for r in sel)))
     return notes
 
 
@@ -205,9 +192,10 @@ def rk3(ctx):
     degrees = sorted({int(r["degree"]) for r in rows})
     fig, ax = plt.subplots(figsize=(7, 4.2))
     out = []
+    notes = ["**rk3** (smooth wave, 32 cells, t = 1, LLF, no limiter; from layered_1d-stability.csv):"]
     for p in degrees:
         sel = sorted([r for r in rows if int(r["degree"]) == p], key=lambda r: float(r["cfl"]))
-        x = [float(r["cfl"]) / ctx.linear_rk3[p] for r in sel]
+        x = [float(r["cfl"]) / LINEAR_RK3[p] for r in sel]
         y = [float(r["error"]) for r in sel]
         line, = ax.loglog(x, y, "-", lw=0.8, label="P%d" % p)
         for xi, yi, r in zip(x, y, sel):
@@ -215,6 +203,13 @@ def rk3(ctx):
                                            "inadmissible": "D"}.get(r["state"], "+"),
                        color=line.get_color(), s=18)
             out.append(dict(degree=p, cfl=r["cfl"], cfl_over_linear_limit=xi, error=yi, state=r["state"]))
+        good = [r for r in out[-len(sel):] if r["state"] == "stable"]
+        bad = [r for r in out[-len(sel):] if r["state"] != "stable" and good and
+               r["cfl_over_linear_limit"] > good[-1]["cfl_over_linear_limit"]]
+        if good and bad:
+            notes.append("  - P%d: error %s at %s x the linear limit (stable), %s (%s) at %s x" % (
+                p, fmt(good[-1]["error"]), fmt(good[-1]["cfl_over_linear_limit"]), fmt(bad[0]["error"]),
+                bad[0]["state"], fmt(bad[0]["cfl_over_linear_limit"])))
     ax.axvline(1, color="k", lw=0.8, ls=":")
     ax.set_xlabel("CFL / linear SSP-RK3 DG limit of the degree (1.256, 0.410, 0.210, 0.130, 0.0897)")
     ax.set_ylabel("L1 error at t = 1 (smooth wave, 32 cells)")
@@ -225,16 +220,6 @@ def rk3(ctx):
     ax.legend(fontsize=7)
     ctx.save(fig, "failure-rk3")
     ctx.csv("failure-rk3", out)
-    notes = ["**rk3** (smooth wave, 32 cells, t = 1, LLF, no limiter; from layered_1d-stability.csv):"]
-    for p in degrees:
-        sel = sorted([r for r in out if r["degree"] == p], key=lambda r: r["cfl_over_linear_limit"])
-        good = [r for r in sel if r["state"] == "stable"]
-        bad = [r for r in sel if r["state"] != "stable" and good and
-               r["cfl_over_linear_limit"] > good[-1]["cfl_over_linear_limit"]]
-        if good and bad:
-            notes.append("  - P%d: error %s at %s x the linear limit (stable), %s (%s) at %s x" % (
-                p, fmt(good[-1]["error"]), fmt(good[-1]["cfl_over_linear_limit"]), fmt(bad[0]["error"]),
-                bad[0]["state"], fmt(bad[0]["cfl_over_linear_limit"])))
     return notes
 
 
@@ -254,35 +239,31 @@ def wall_strain_bound(rho=2., K=2., beta=0.3, speed=0.4):
 
 
 def shock(ctx):
-    eps_w = wall_strain_bound()
+    eps_w, t_end = wall_strain_bound(), 240  # the case as shipped (at t = 120 no degree overshoots yet)
     degrees = [1] if ctx.quick else [1, 2, 3, 4]
     limiters = [("characteristic minmod (M = 0)", "characteristic"), ("no limiter", "none")]
-    base, t_end = EVERYWHERE, 240  # the case as shipped (at t = 120 no degree overshoots yet)
-    items = [(p, l) for l in limiters for p in degrees]
 
     def one(item):
         p, (label, lim) = item
         cfl = 0.07 if p == 4 else 0.75 / (2 * p + 1)
-        d = "shock/%s-p%d" % (lim, p)
-        run = ctx.run(d, "prm/elasticity_shock.prm", base + [
-            "Discretization/degree=%d" % p, "Limiter/scheme=" + lim,
-            "Time stepping/CFL number=%.12g" % cfl])
+        run = ctx.run("shock/%s-p%d" % (lim, p), "prm/elasticity_shock.prm", EVERYWHERE + [
+            "Discretization/degree=%d" % p, "Limiter/scheme=" + lim, "Time stepping/CFL number=%.12g" % cfl])
         r = dict(limiter=label, degree=p, cfl=cfl, exit=run.code, message=run.stderr[:160],
-                 time_loop_cpu_s=run.summary.get("time_loop_cpu_s", float("nan")))
+                 time_loop_cpu_s=run.summary.get("time_loop_cpu_s", NAN))
         if run.code == 0:
             prof = outputs.latest(run.directory, "profile")
             strain = outputs.read_table(prof)["strain"]
             r.update(final_max_strain=strain.max(), final_min_strain=strain.min(),
                      overshoot_pct=100 * max(0., strain.max() - eps_w) / eps_w,
-                     undershoot_pct=100 * max(0., -strain.min()) / eps_w,
-                     profile=prof)
+                     undershoot_pct=100 * max(0., -strain.min()) / eps_w, profile=prof)
         return r
 
-    rows = ctx.pmap(one, items)
+    rows = ctx.pmap(one, [(p, l) for l in limiters for p in degrees])
     ctx.csv("failure-shock", [{k: v for k, v in r.items() if k != "profile"} for r in rows])
+    done = [r for r in rows if r["exit"] == 0]
     fig, ax = plt.subplots(1, 2, figsize=(11, 4.2))
     for (label, lim), c in zip(limiters, ("tab:blue", "tab:red")):
-        sel = [r for r in rows if r["limiter"] == label and r["exit"] == 0]
+        sel = select(done, limiter=label)
         ax[0].plot([r["degree"] for r in sel], [r["overshoot_pct"] for r in sel], "o-", color=c,
                    label="overshoot above eps_w, " + label)
         ax[0].plot([r["degree"] for r in sel], [r["undershoot_pct"] for r in sel], "s--", color=c,
@@ -294,21 +275,18 @@ def shock(ctx):
     ax[0].set_ylabel("%% of eps_w = %.4f at t = %g" % (eps_w, t_end))
     ax[0].legend(fontsize=7)
     ax[0].grid(alpha=0.3)
-    # the profiles at the shock
-    lim_rows = [r for r in rows if r["exit"] == 0 and r["limiter"] == limiters[0][0]]
-    if lim_rows:
-        t = outputs.read_table(lim_rows[-1]["profile"])
-        x, e = t["x"], t["strain"]
-        xs = x[np.argmin(np.diff(e)) if len(e) > 1 else 0]  # steepest drop: the shock
-        for r in rows:
-            if r["exit"] != 0:
-                continue
+    # the profiles at the shock: the steepest drop of the last limited run's
+    limited = select(done, limiter=limiters[0][0])
+    if limited:
+        t = outputs.read_table(limited[-1]["profile"])
+        xs = t["x"][np.argmin(np.diff(t["strain"])) if len(t) > 1 else 0]
+        for r in done:
             t = outputs.read_table(r["profile"])
             x, e = t["x"], t["strain"]
             w = (x > xs - 10) & (x < xs + 5)
-            ax[1].plot(x[w], e[w], "-" if r["limiter"] == limiters[1][0] else ":", lw=1,
-                       label="P%d, %s" % (r["degree"], "no limiter" if r["limiter"] == limiters[1][0]
-                                           else "limited"))
+            unlimited = r["limiter"] == limiters[1][0]
+            ax[1].plot(x[w], e[w], "-" if unlimited else ":", lw=1,
+                       label="P%d, %s" % (r["degree"], "no limiter" if unlimited else "limited"))
         ax[1].axhline(eps_w, color="gray", lw=0.6, ls="--")
         ax[1].axhline(0, color="gray", lw=0.6, ls="--")
         plot.label(ax[1], "x", "strain at t = %g" % t_end)
@@ -316,16 +294,12 @@ def shock(ctx):
     fig.suptitle("The unlimited scheme at a shock (prm/elasticity_shock.prm, dx = 0.25): over- and "
                  "undershoots; the characteristic minmod limiter removes them", fontsize=9)
     ctx.save(fig, "failure-shock")
-    notes = ["**shock** (prm/elasticity_shock.prm, 1200 cells, t = %g; simple-wave range [0, eps_w], "
-             "eps_w = %.4f; strain at p + 1 equidistant points per cell):" % (t_end, eps_w)]
-    for r in rows:
-        if r["exit"] == 0:
-            notes.append("  - P%d, %s: strain in [%.4f, %.4f]: overshoot %.1f %%, undershoot %.1f %%" % (
-                r["degree"], r["limiter"], r["final_min_strain"], r["final_max_strain"],
-                r["overshoot_pct"], r["undershoot_pct"]))
-        else:
-            notes.append("  - P%d, %s: exit %d: %s" % (r["degree"], r["limiter"], r["exit"], r["message"]))
-    return notes
+    return ["**shock** (prm/elasticity_shock.prm, 1200 cells, t = %g; simple-wave range [0, eps_w], "
+            "eps_w = %.4f; strain at p + 1 equidistant points per cell):" % (t_end, eps_w)] + [
+        "  - P%d, %s: strain in [%.4f, %.4f]: overshoot %.1f %%, undershoot %.1f %%" % (
+            r["degree"], r["limiter"], r["final_min_strain"], r["final_max_strain"], r["overshoot_pct"],
+            r["undershoot_pct"]) if r["exit"] == 0 else
+        "  - P%d, %s: exit %d: %s" % (r["degree"], r["limiter"], r["exit"], r["message"]) for r in rows]
 
 
 # -------------------------------------------------------------------- hopper
@@ -338,37 +312,39 @@ def hopper(ctx):
     meshes = [100, 200] if ctx.quick else [100, 200, 400, 800]
     # N = 1600 (16x the work of N = 400) only where it changes the outcome
     finest = [] if ctx.quick else [("cone", 31, 1600)]
-    items = [(g, a, n) for g, a in cases for n in meshes] + finest
 
     def one(item):
         g, a, n = item
-        d = "hopper/%s-30-%g-n%d" % (g, a, n)
-        run = ctx.run(d, "prm/hopper_cone_30_25.prm", [
+        run = ctx.run("hopper/%s-30-%g-n%d" % (g, a, n), "prm/hopper_cone_30_25.prm", [
             "Hopper/geometry=" + g, "Hopper/lower half-angle=%g" % a, "Hopper/cells=%d" % n,
             "Time stepping/final time=%g" % HOPPER_TAU, "Hopper output/step series interval=0"])
         code, s = run.code, run.summary
         return dict(geometry=g, upper=30, lower=a, cells=n, exit=code,
                     outcome="completes" if code == 0 else ("hyperbolicity lost" if code == 3 else "exit %d" % code),
-                    tau_reached=s.get("final_time", float("nan")),
+                    tau_reached=s.get("final_time", NAN),
                     **diagnostics(s, "min_hyperbolicity_margin", "tau_of_min_margin", "theta_of_min_margin_deg"),
-                    time_loop_cpu_s=s.get("time_loop_cpu_s", float("nan")), message=run.stderr[:200])
+                    time_loop_cpu_s=s.get("time_loop_cpu_s", NAN), message=run.stderr[:200])
 
-    rows = ctx.pmap(one, items)
+    rows = ctx.pmap(one, [(g, a, n) for g, a in cases for n in meshes] + finest)
     ctx.csv("failure-hopper", rows)
     fig, ax = plt.subplots(1, 2, figsize=(11, 4.2))
     labels = ["%s 30 -> %g" % c for c in cases]
+    notes = ["**hopper** (P1, CFL 1/3, characteristic limiter, marched to tau = %g):" % HOPPER_TAU]
     for i, (g, a) in enumerate(cases):
-        for r in [r for r in rows if r["geometry"] == g and r["lower"] == a]:
+        sel = select(rows, geometry=g, lower=a)
+        for r in sel:
             ok = r["exit"] == 0
-            ax[0].scatter([r["cells"]], [i], marker="o" if ok else "x", s=40,
-                          color="tab:green" if ok else "tab:red")
+            ax[0].scatter([r["cells"]], [i], marker="o" if ok else "x", s=40, color="tab:green" if ok else "tab:red")
             ax[0].annotate(("m %.2g" % r["min_hyperbolicity_margin"]) if ok else ("tau %.4g" % r["tau_reached"]),
                            (r["cells"], i), xytext=(4, 5), textcoords="offset points", fontsize=6.5)
-        fail = sorted([r for r in rows if r["geometry"] == g and r["lower"] == a and r["exit"] == 3],
-                      key=lambda r: r["cells"])
+        fail = sorted(select(sel, exit=3), key=lambda r: r["cells"])
         if fail:
-            ax[1].semilogx([r["cells"] for r in fail], [r["tau_reached"] for r in fail], "x-",
-                           label=labels[i])
+            ax[1].semilogx([r["cells"] for r in fail], [r["tau_reached"] for r in fail], "x-", label=labels[i])
+        notes.append("  - %s 30 -> %g: %s" % (g, a, "; ".join(
+            "N %d %s" % (r["cells"], ("completes, min margin %s at tau %s" % (
+                fmt(r["min_hyperbolicity_margin"], 2), fmt(r["tau_of_min_margin"], 3))) if r["exit"] == 0 else
+                "fails at tau %s (theta %s deg)" % (fmt(r["tau_reached"], 4), fmt(r["theta_of_min_margin_deg"], 2)))
+            for r in sel)))
     plot.log_ticks(ax[0], [r["cells"] for r in rows])
     ax[0].set_yticks(range(len(cases)))
     ax[0].set_yticklabels(labels, fontsize=7)
@@ -385,14 +361,6 @@ def hopper(ctx):
     fig.suptitle("Hopper: steep-to-shallow transitions (30 deg -> shallower lower hopper) lose "
                  "hyperbolicity where the corner shock focuses on the axis", fontsize=9)
     ctx.save(fig, "failure-hopper")
-    notes = ["**hopper** (P1, CFL 1/3, characteristic limiter, marched to tau = %g):" % HOPPER_TAU]
-    for g, a in cases:
-        sel = [r for r in rows if r["geometry"] == g and r["lower"] == a]
-        notes.append("  - %s 30 -> %g: %s" % (g, a, "; ".join(
-            "N %d %s" % (r["cells"], ("completes, min margin %s at tau %s" % (
-                fmt(r["min_hyperbolicity_margin"], 2), fmt(r["tau_of_min_margin"], 3))) if r["exit"] == 0 else
-                "fails at tau %s (theta %s deg)" % (fmt(r["tau_reached"], 4), fmt(r["theta_of_min_margin_deg"], 2)))
-            for r in sel)))
     return notes
 
 

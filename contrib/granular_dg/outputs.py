@@ -201,6 +201,11 @@ def sgn_map(directory):
     return t["time"], z, np.array([t[h] for h in t.header[1:]]).T
 
 
+def select(rows, **values):
+    """The rows (dicts) with the given values."""
+    return [r for r in rows if all(r[k] == v for k, v in values.items())]
+
+
 def write_csv(path, rows):
     """Rows (dicts) as CSV, the columns in order of first appearance."""
     if not rows:

@@ -1,13 +1,18 @@
 """Running granular_dg on a case file with --set overrides into an output
-directory, and reusing a run that is there already."""
+directory, reusing a run that is there already, and the runs of a study
+(Runs)."""
 import collections
 import concurrent.futures
 import json
 import os
+import re
 import subprocess
 import sys
 import tempfile
+import threading
 import time
+
+from . import outputs, plot
 
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 # no snapshots: no output times (but the final one), no VTU
@@ -120,6 +125,46 @@ def pmap(f, items, jobs=2):
         return list(ex.map(f, items))
 
 
+def cfl_limits():
+    """{scheme: [the CFL limit of degree 0..4]}: the program's table (dg::cfl_limit in source/dg/parameters.cc)."""
+    with open(os.path.join(ROOT, "source/dg/parameters.cc")) as f:
+        rows = re.findall(r"\{([\d.,\s]+)\},?\}?;?\s*// (\w+)", f.read())
+    return {name: [float(x) for x in values.split(",")] for values, name in rows}
+
+
 def tag(value):
     """A number as part of a file name: 0.25 -> 0_25."""
     return ("%.6g" % value).replace(".", "_")
+
+
+class Runs:
+    """The runs of a study and what it writes: run(d, prm, sets) runs PRM
+    into OUT/SUBDIR/d with the common SETS and then its own, reused when it
+    finished there before (delete it to rerun; check: exit with the error of
+    a failed run); pmap runs --jobs at a time; csv and save write OUT/NAME.csv
+    and the chart OUT/NAME.png (and in the other FORMATS)."""
+
+    def __init__(self, build, out, quick=False, jobs=1, subdir="", sets=(), check=False, formats=()):
+        self.build, self.out, self.quick, self.jobs = os.path.abspath(build), os.path.abspath(out), quick, jobs
+        self.subdir, self.sets, self.check, self.formats = subdir, tuple(sets), check, formats
+        self.count, self.lock = {"executed": 0, "reused": 0}, threading.Lock()
+        os.makedirs(self.out, exist_ok=True)
+
+    def run(self, d, prm, sets=(), **kwargs):
+        directory = os.path.join(self.out, self.subdir, d)
+        with self.lock:
+            self.count["reused" if finished(directory) else "executed"] += 1
+        return run_case(self.build, prm, directory, self.sets + tuple(sets), reuse=True, check=self.check, **kwargs)
+
+    def pmap(self, f, items):
+        return pmap(f, items, self.jobs)
+
+    def pick(self, table, key):
+        """table[key], or table["quick_" + key] in a quick study."""
+        return table["quick_" + key] if self.quick else table[key]
+
+    def csv(self, name, rows):
+        outputs.write_csv(os.path.join(self.out, name + ".csv"), rows)
+
+    def save(self, fig, name, **kwargs):
+        plot.save(fig, os.path.join(self.out, name + ".png"), *self.formats, **kwargs)

@@ -1,24 +1,32 @@
 #!/usr/bin/python3
-"""Charts of the network studies (contrib/network_studies.sh writes their
-convergence.csv files):
+"""The network scene's studies, tables and figures (doc/network.md,
+"Reproducing the tables and figures"); BUILD: the build directory, STUDIES:
+the studies' directory (default output/network_studies):
 
-  work-precision: L1 error against CPU time for degrees 0-3 on Examples 7.3
-                  and 7.5, grid levels 3-12;
-  eoc:            L1 error against the grid level for the five examples at
-                  degree 0 (the paper's scheme), with twice the values of the
-                  paper's Table 1 for comparison;
-  smooth:         L1 error against the grid level for the smooth case, per
-                  degree, with the paper's vertex cell and without volume.
-
-  /usr/bin/python3 contrib/network_charts.py STUDIES_DIR FIGURE_DIR
-  /usr/bin/python3 contrib/network_charts.py STUDIES_DIR --tables   # doc/network.md's tables
+  network.py studies [BUILD [STUDIES]]   the EOC tables of the five examples of Musch,
+      Fjordholm & Risebro, Section 7, at grid levels 3-12 (degree 0, the paper's
+      scheme) and for Examples 7.3 and 7.5 degrees 1-3 with the limiter; the smooth
+      order study (about 40 min on one core, degree 3 at level 12 dominates);
+  network.py tables [STUDIES]            doc/network.md's tables (markdown);
+  network.py charts STUDIES FIGURE_DIR   network_eoc.png (L1 error against the level at
+      degree 0 beside the paper's Table 1 and twice it), network_work_precision.png
+      (degrees 0-3 on Examples 7.3 and 7.5), network_smooth_order.png (the smooth case
+      per degree, with the paper's vertex cell and without volume);
+  network.py figures [BUILD [STUDIES]]   doc/figures/: the five examples as shipped
+      (level 8) and 7.5 at degree 2 with their profiles against the exact solutions,
+      the ParaView picture of Example 7.1 and the charts.
 """
 import math
 import os
-import sys
+import subprocess
+import types
 
-from granular_dg import outputs, plot
+from granular_dg import main, outputs, plot
+from granular_dg.run import run_case
 
+import plot_profiles
+
+FIGURES = os.path.join("doc", "figures")
 # Table 1 of Musch, Fjordholm & Risebro, levels 3-12, as printed
 TABLE_1 = {
     '7.1': [0.07087, 0.0546, 0.03117, 0.01903, 0.01115, 0.00644, 0.00330, 0.00173, 0.00085, 0.00042],
@@ -114,10 +122,44 @@ def rate(coarse, fine, keys):
     return '%.2f' % math.log2(sum(coarse[k] for k in keys) / sum(fine[k] for k in keys))
 
 
-if __name__ == '__main__':
-    if sys.argv[2] == '--tables':
-        tables(sys.argv[1])
-    else:
-        eoc(sys.argv[1], sys.argv[2])
-        work_precision(sys.argv[1], sys.argv[2])
-        smooth(sys.argv[1], sys.argv[2])
+def studies(a):
+    def run(name, prm, *sets):
+        run_case(a.build, prm, os.path.join(a.studies, name), ("Convergence/enabled=true",) + sets,
+                 check=True, keep=False)
+
+    levels = "Convergence/cells=8,16,32,64,128,256,512,1024,2048,4096"
+    for e in (1, 2, 4):
+        run("example_7_%d" % e, "prm/network_example_7_%d.prm" % e, levels)
+    for e in (3, 5):
+        run("example_7_%d" % e, "prm/network_example_7_%d.prm" % e, levels, "Convergence/degrees=0,1,2,3",
+            "Convergence/CFL numbers=0.5,0.3,0.18,0.1", "Limiter/scheme=componentwise")
+    for w in (1, 0):
+        run("smooth_width_%d" % w, "prm/network_smooth.prm", "Network/vertex width factor=%d" % w,
+            "Convergence/CFL numbers=0.5,0.3,0.18,0.03", "Convergence/cells=8,16,32,64,128,256,512")
+
+
+def figures(a):
+    runs = [("network_example_7_%d" % e, e, (), "degree 0") for e in range(1, 6)]
+    runs.append(("network_example_7_5_dg2", 5, ("Discretization/degree=2", "Time stepping/CFL number=0.18",
+                                                "Limiter/scheme=componentwise"), "degree 2 + limiter"))
+    for name, e, sets, title in runs:
+        directory = os.path.join("output", name)
+        run_case(a.build, "prm/network_example_7_%d.prm" % e, directory, sets, check=True, keep=False)
+        plot_profiles.edges(types.SimpleNamespace(out=os.path.join(FIGURES, name + ".png"), run=directory,
+                                                  snapshot=-1, title="Example 7.%d, level 8, %s" % (e, title)))
+    subprocess.run(["xvfb-run", "-a", "pvpython", "--no-mpi", os.path.join(os.path.dirname(__file__),
+                    "paraview_figures.py"), "network", "output/network_example_7_1",
+                    os.path.join(FIGURES, "network_paraview_7_1.png"), "0.625"], check=True)
+    charts(types.SimpleNamespace(studies=a.studies, figures=FIGURES))
+
+
+def charts(a):
+    for chart in (eoc, work_precision, smooth):
+        chart(a.studies, a.figures)
+
+
+if __name__ == "__main__":
+    build = ("build", dict(nargs="?", default="build"))
+    out = ("studies", dict(nargs="?", default="output/network_studies"))
+    main(__doc__, {"studies": (studies, [build, out]), "tables": (lambda a: tables(a.studies), [out]),
+                   "charts": (charts, ["studies", "figures"]), "figures": (figures, [build, out])})

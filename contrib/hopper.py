@@ -1,0 +1,308 @@
+#!/usr/bin/python3
+"""The hopper scene's figures (doc/hopper.md, like Figs. 9-14 of Gremaud &
+Matthews) and the extra runs behind some of them (BUILD: the build
+directory, default build; the runs go to $OUTPUT_DIR, default output/):
+
+  hopper.py figures [OUTPUT_DIR [FIGURE_DIR]]
+      the PNGs (default doc/figures/) from OUTPUT_DIR/hopper_<case>/ as the
+      prm/hopper_<case>.prm runs write them (a figure without its runs is skipped);
+  hopper.py range [BUILD]       Fig. 9's bar: hopper_march_range/range.csv;
+  hopper.py precision [BUILD]   4.7's work precision: hopper_work_precision/work-precision.csv;
+  hopper.py indicators [BUILD]  4.7's whole-march table (about 40 min of CPU):
+                                hopper_indicators/whole-march.csv;
+  hopper.py all [BUILD]         every figure from scratch: the prm/hopper_*.prm cases,
+                                the perturbed runs, range, precision, figures and the
+                                ParaView pictures (at most 30 min of CPU on one core).
+
+precision and indicators reuse the runs that completed before.
+"""
+import math
+import os
+import subprocess
+import types
+
+import numpy as np
+
+from granular_dg import main, outputs, plot
+from granular_dg.compare import stress_l1
+from granular_dg.run import NO_SNAPSHOTS, ROOT, program, run_case
+
+OUT = os.environ.get('OUTPUT_DIR', 'output')
+RANGE_ANGLES = [18.5, 19, 20, 21, 21.5, 22, 23, 24, 25, 26, 27, 28, 29, 30, 31, 31.5, 32, 33]
+SAMPLED = ('Hopper output/step series interval=0', 'Hopper output/sample points=2001') + NO_SNAPSHOTS
+plt = plot.pyplot()
+
+
+def read(case, name):
+    return outputs.read_table(os.path.join(OUT, 'hopper_' + case, name))
+
+
+def have(*cases):
+    missing = [c for c in cases if not os.path.isdir(os.path.join(OUT, 'hopper_' + c))]
+    if missing:
+        print('skipped (no run): ' + ', '.join(missing))
+    return not missing
+
+
+def save(fig, name, tight=True):
+    os.makedirs(FIG, exist_ok=True)
+    plot.save(fig, os.path.join(FIG, name), dpi=130, tight=tight, bbox_inches='tight', say=True)
+
+
+def fig9():
+    if not have('fig9_scan'):
+        return
+    d = read('fig9_scan', 'fig9-scan.csv')
+    fig, ax = plt.subplots(figsize=(6.4, 5))
+    T = d['Theta_w_deg']
+    ax.plot(T, T, 'k:', lw=1, label=r'$\theta_w = \Theta_w$')
+    C = np.where(np.isfinite(d['lambda_max']), np.maximum(d['theta_w_min_C_deg'], 0), np.nan)
+    ax.plot(T, C, 'b-', lw=2, label=r'C: $\Theta_w - \arctan|1/\lambda_{max}|$ (characteristics)')
+    ax.plot(T, d['admissible_lower_min_deg'], 'g--', label=r'lowest $\theta_w$ with hyperbolic data on $\Gamma_0$')
+    ax.plot(T, d['admissible_lower_max_deg'], 'g-.', label=r'highest $\theta_w$ with hyperbolic data on $\Gamma_0$')
+    s = outputs.summary(os.path.join(OUT, 'hopper_fig9_scan'))['diagnostics']
+    for key, txt in (('psi_monotone_up_to_deg', r'$\psi$ monotone up to %.2f$^\circ$'),
+                     ('zero_transition_at_deg', r'no steeper transition from %.2f$^\circ$')):
+        ax.axvline(s[key], color='gray', lw=0.8)
+        ax.text(s[key] + 0.3, 2, txt % s[key], rotation=90, fontsize=8, color='gray')
+    bar = os.path.join(OUT, 'hopper_march_range', 'range.csv')
+    if os.path.exists(bar):
+        r = outputs.read_table(bar)
+        ok = r['completed'] > 0
+        ax.plot(30 + 0 * r['theta_w'][ok], r['theta_w'][ok], 'rs', ms=4,
+                label=r'$\Theta_w = 30^\circ$: marched to $r = 0.05 r_0$ (N = 400)')
+        ax.plot(30 + 0 * r['theta_w'][~ok], r['theta_w'][~ok], 'rx', ms=6, label='lost hyperbolicity')
+    ax.set(xlim=(T[0], T[-1] + 0.5), ylim=(0, 60))
+    plot.label(ax, r'upper half-angle $\Theta_w$ (deg)', r'lower half-angle $\theta_w$ (deg)',
+               r'Fig. 9: admissible transitions, cone, $\delta = 32.1^\circ$, $\mu = \tan 11.7^\circ$', size=10)
+    ax.legend(fontsize=7, loc='upper left', bbox_to_anchor=(0.0, 0.93))
+    save(fig, 'hopper_fig9_scan.png', tight=False)
+
+
+def fig10():
+    if not have('radial_wedge', 'radial_cone'):
+        return
+    fig, axes = plt.subplots(2, 2, figsize=(10, 7))
+    for col, g, bound in ((0, 'wedge', 0.025), (1, 'cone', 0.5)):
+        d = read('radial_' + g, 'hopper-steps.csv')
+        ax = axes[0, col]
+        ax.plot(d['tau'], 100 * d['max_rel_diff_radial'], lw=0.8)
+        plot.label(ax, r'$\tau = -\ln(r/r_0)$', 'max relative difference to the radial field (%)',
+                   '%s, 30$^\\circ$, P1, N = 400 (paper: < %g %%)' % (g, bound), size=10)
+        ax.set_ylim(bottom=0)
+        p = os.path.join(OUT, 'hopper_perturbed_' + g, 'hopper-steps.csv')
+        ax = axes[1, col]
+        if os.path.exists(p):
+            e = outputs.read_table(p)
+            ax.semilogy(e['tau'], e['max_rel_diff_radial'], lw=0.8, label=r'$T_{rr}(\tau = 0)$ perturbed by $10^{-3}$')
+            kappa = 0.9272 if g == 'wedge' else -0.8075
+            t = np.linspace(0, e['tau'][-1], 50)
+            i = np.searchsorted(e['tau'], 1.0)
+            ax.semilogy(t, e['max_rel_diff_radial'][i] * np.exp(kappa * (t - e['tau'][i])), 'k--', lw=1,
+                        label=r'$e^{\kappa\tau}$, $\kappa$ = %+.3f (linearised DG spectrum)' % kappa)
+            ax.legend(fontsize=8)
+        plot.label(ax, r'$\tau$', 'max relative difference')
+    fig.suptitle('Fig. 10: preservation of the radial field (top); growth/decay of a '
+                 'perturbation (bottom)', fontsize=11)
+    save(fig, 'hopper_fig10_preservation.png')
+
+
+def profiles(case, axes, label=None):
+    files = outputs.files(os.path.join(OUT, 'hopper_' + case), 'stress')
+    cmap = plt.get_cmap('viridis')
+    for k, d in enumerate(map(outputs.read_table, files)):
+        tau, c = d.value('tau'), cmap(k / max(1, len(files) - 1))
+        for ax, name in zip(axes, ('T_rr_over_r', 'T_rtheta_over_r', 'T_thetatheta_over_r')):
+            ax.plot(d['theta_deg'], d[name] / 1e3, color=c, lw=1,
+                    label=(r'$\tau$ = %.2f' % tau) if ax is axes[0] else None)
+    for ax, name in zip(axes, (r'$T_{rr}/r$', r'$T_{r\theta}/r$', r'$T_{\theta\theta}/r$')):
+        plot.label(ax, r'$\theta$ (deg)', name + ' (kPa/m)', label, size=9)
+    axes[0].legend(fontsize=7)
+
+
+def transition_figure(case, number, title):
+    if not have(case):
+        return
+    fig = plt.figure(figsize=(13, 7.5))
+    profiles(case, [fig.add_subplot(2, 3, i + 1) for i in range(3)])
+    d = read(case, 'hopper-field.csv')
+    taus = np.unique(d['tau'])
+    th = d['theta_deg'][d['tau'] == taus[0]]
+    for i, (name, label) in enumerate((('T_rr_over_r', r'$T_{rr}/r$ over $(\theta, \tau)$'),
+                                       ('T_rtheta_over_r', r'$T_{r\theta}/r$ over $(\theta, \tau)$'),
+                                       ('psi_deg', r'Sokolovskii angle $\psi$ (limit 28.95$^\circ$)'))):
+        ax = fig.add_subplot(2, 3, 4 + i)
+        scale, cmap = (1, 'magma') if name == 'psi_deg' else (1e3, 'viridis')
+        m = ax.pcolormesh(th, taus, d[name].reshape(len(taus), len(th)) / scale, shading='auto', cmap=cmap)
+        plot.label(ax, r'$\theta$ (deg)', r'$\tau = -\ln(r/r_0)$', label, size=9, grid=0)
+        plt.colorbar(m, ax=ax, label='deg' if name == 'psi_deg' else 'kPa/m')
+    fig.suptitle('Fig. %s: %s' % (number, title), fontsize=11)
+    save(fig, 'hopper_fig%s_%s.png' % (number, case))
+
+
+def fig11():
+    if not have('cone_30_24_p1', 'cone_30_24_p2'):
+        return
+    fig, axes = plt.subplots(2, 3, figsize=(13, 7.5))
+    profiles('cone_30_24_p1', axes[0], r'P$^1$, N = 400')
+    profiles('cone_30_24_p2', axes[1], r'P$^2$, N = 200')
+    fig.suptitle(r'Fig. 11: cone $30^\circ \to 24^\circ$, P$^1$ N = 400 (top) vs P$^2$ '
+                 r'N = 200 (bottom), stresses scaled by $r$', fontsize=11)
+    save(fig, 'hopper_fig11_p1_p2.png')
+
+
+def work_precision_figure():
+    path = os.path.join(OUT, 'hopper_work_precision', 'work-precision.csv')
+    if not os.path.exists(path):
+        print('skipped (no run): work precision (contrib/hopper.py precision)')
+        return
+    d = outputs.read_table(path)
+    fig, axes = plt.subplots(1, 2, figsize=(11, 4.6))
+    panels = ((axes[0], ((0, '-', 'limiter'), (2, '--', 'no limiter')),
+               r'radial field, cone 30$^\circ$, $\tau$ = 1: error vs the exact field'),
+              (axes[1], ((1, '-', 'limiter'),), r'cone 30$^\circ \to$ 25$^\circ$, $\tau$ = 0.5: error vs P3, N = 800'))
+    for ax, cases, title in panels:
+        for case, ls, what in cases:
+            for p, mk in ((1, 'o'), (2, 's'), (3, '^')):
+                sel = (d['case'] == case) & (d['degree'] == p)
+                if not sel.any():
+                    continue
+                ax.loglog(d['cpu_march_s'][sel], d['l1_error'][sel], mk + ls, color='C%d' % (p - 1),
+                          label='P%d, %s' % (p, what))
+                for x, y, n in zip(d['cpu_march_s'][sel], d['l1_error'][sel], d['cells'][sel]):
+                    ax.annotate('%d' % n, (x, y), fontsize=6, xytext=(2, 2), textcoords='offset points')
+        plot.label(ax, 'CPU time of the march (s; run minus a one-step run)',
+                   r'relative L$^1$ error of $(T_{rr}, T_{r\theta})$', title, legend=7, size=9)
+    fig.suptitle('Work-precision (labels: cells N; CFL 1/3, 1/5, 0.12 for P1, P2, P3; '
+                 'characteristic minmod limiter, M = 0)', fontsize=10)
+    save(fig, 'hopper_work_precision.png')
+
+
+def figures(a):
+    global OUT, FIG
+    OUT, FIG = a.output, a.figures
+    fig9()
+    fig10()
+    fig11()
+    transition_figure('cone_30_25', '12', r'cone $30^\circ \to 25^\circ$, P$^1$, N = 400')
+    transition_figure('wedge_30_25', '13', r'wedge $30^\circ \to 25^\circ$, P$^1$, N = 400')
+    transition_figure('wedge_30_35', '14', r'wedge $30^\circ \to 35^\circ$, P$^1$, N = 400')
+    transition_figure('cone_30_31', '14b', r'cone $30^\circ \to 31^\circ$, P$^1$, N = 400')
+    work_precision_figure()
+
+
+def run(build, prm, directory, *sets, reuse=False, check=False):
+    """A run and its CPU time (a reused run without one is repeated)."""
+    r = run_case(build, prm, directory, sets, reuse=reuse, check=check)
+    return run_case(build, prm, directory, sets, check=check) if math.isnan(r.cpu_s) else r
+
+
+def stress(directory, i):
+    return outputs.read_table(os.path.join(directory, 'stress-%04d.csv' % i))
+
+
+def march_range(a):
+    """The 30 deg cone to the lower angles RANGE_ANGLES, P1, N = 400, to r = 0.05 r0."""
+    base, rows = os.path.join(OUT, 'hopper_march_range'), []
+    for angle in RANGE_ANGLES:
+        r = run(a.build, 'prm/hopper_cone_30_25.prm', os.path.join(base, 'theta_%g' % angle),
+                'Hopper/lower half-angle=%g' % angle, 'Hopper output/step series interval=0', *NO_SNAPSHOTS)
+        s = r.summary
+        rows.append(dict(theta_w=angle, completed=int(r.code == 0), final_tau=s.get('final_time', 0),
+                         min_margin=s.get('diagnostics', {}).get('min_hyperbolicity_margin', float('nan')),
+                         cpu_s=r.cpu_s))
+        print('theta_w = %g: exit %d, tau = %s %s' % (angle, r.code, s.get('final_time'), r.stderr[:160]))
+    outputs.write_csv(os.path.join(base, 'range.csv'), rows)
+
+
+def precision(a):
+    """P1-P3 on several meshes: (0) the 30 deg cone's radial field at tau = 1,
+    (1) the 30 -> 25 deg cone at tau = 0.5 against P3 on N = 800, (2) as (0)
+    without the limiter; the relative L1 error of (T_rr, T_rtheta) at 2001
+    theta, the CPU time of the run and of the march (minus a one-step run)."""
+    base = os.path.join(OUT, 'hopper_work_precision')
+    # CFL 1/(2k+1) (GM) for k = 1, 2; k = 3 is unstable at 1/7 (limit ~0.13, doc/hopper.md)
+    cfl = {1: 1 / 3., 2: 1 / 5., 3: 0.12}
+    meshes = {1: [50, 100, 200, 400], 2: [25, 50, 100, 200], 3: [25, 50, 100, 200]}
+    ref = stress(run(a.build, 'prm/hopper_cone_30_25.prm', os.path.join(base, 'transition_reference'),
+                     'Discretization/degree=3', 'Hopper/cells=800', 'Time stepping/CFL number=%.12g' % cfl[3],
+                     'Time stepping/final time=0.5', *SAMPLED, reuse=True, check=True).directory, 1)
+    # the CPU time of start-up and set-up (a one-step run), subtracted below
+    setup = {prm: min(run(a.build, prm, os.path.join(base, 'setup_' + os.path.basename(prm)[:-4]),
+                          'Time stepping/final time=1e-9', *SAMPLED).cpu_s for _ in range(3))
+             for prm in ('prm/hopper_radial_cone.prm', 'prm/hopper_cone_30_25.prm')}
+    rows = []
+    for case, prm, final, extra in ((0, 'prm/hopper_radial_cone.prm', 1.0, []),
+                                    (1, 'prm/hopper_cone_30_25.prm', 0.5, []),
+                                    (2, 'prm/hopper_radial_cone.prm', 1.0, ['Limiter/scheme=none'])):
+        for p, n in ((p, n) for p, cells in meshes.items() for n in cells):
+            r = run(a.build, prm, os.path.join(base, 'case%d_p%d_n%d' % (case, p, n)), 'Discretization/degree=%d' % p,
+                    'Hopper/cells=%d' % n, 'Time stepping/CFL number=%.12g' % cfl[p],
+                    'Time stepping/final time=%g' % final, *SAMPLED, *extra, reuse=True, check=True)
+            e = stress_l1(stress(r.directory, 1), ref if case == 1 else None)
+            rows.append(dict(case=case, degree=p, cells=n, l1_error=e, cpu_s=r.cpu_s,
+                             cpu_march_s=max(r.cpu_s - setup[prm], 1e-3), time_loop_s=r.summary['time_loop_s'],
+                             dof_updates_per_s=r.summary['dof_updates_per_s']))
+            print('case %d P%d N = %d: L1 %.3e, cpu %.2f s, %.2f MDoF/s'
+                  % (case, p, n, e, r.cpu_s, r.summary['dof_updates_per_s'] / 1e6))
+    outputs.write_csv(os.path.join(base, 'work-precision.csv'), rows)
+
+
+def indicators(a):
+    """The whole march of the cone and wedge 30 -> 25 as shipped on N = 100-400,
+    the limiter everywhere and kxrcf, against P2 N = 1600 references of each."""
+    base = os.path.join(OUT, 'hopper_indicators')
+    common = SAMPLED + ('Output/output times=1',)
+    choices = ('everywhere', 'kxrcf')
+    rows = []
+    for case in ('cone_30_25', 'wedge_30_25'):
+        prm = 'prm/hopper_%s.prm' % case
+        refs = [run(a.build, prm, os.path.join(base, '%s_reference_%s' % (case, k)), 'Limiter/indicator=' + k,
+                    'Discretization/degree=2', 'Hopper/cells=1600', 'Time stepping/CFL number=0.2', *common,
+                    reuse=True, check=True).directory for k in choices]
+        for n, k in ((n, k) for n in (100, 200, 400) for k in choices):
+            r = run(a.build, prm, os.path.join(base, '%s_%s_n%d' % (case, k, n)), 'Limiter/indicator=' + k,
+                    'Hopper/cells=%d' % n, *common, reuse=True, check=True)
+            for i, tau in ((1, '1'), (2, 'outlet')):  # stress-0001: tau = 1; stress-0002: the outlet
+                e = [stress_l1(stress(r.directory, i), stress(d, i)) for d in refs]
+                rows.append(dict(case=case, indicator=k, cells=n, tau=tau, l1_vs_reference_everywhere=e[0],
+                                 l1_vs_reference_kxrcf=e[1], cpu_s=r.cpu_s))
+                print('%s %s N = %d tau = %s: L1 %.3e / %.3e (references %s), cpu %.2f s'
+                      % (case, k, n, tau, e[0], e[1], '/'.join(choices), r.cpu_s))
+        print('%s: the references differ at the outlet by %.2e'
+              % (case, stress_l1(stress(refs[0], 2), stress(refs[1], 2))))
+    outputs.write_csv(os.path.join(base, 'whole-march.csv'), rows)
+
+
+def everything(a):
+    os.chdir(ROOT)
+
+    def granular_dg(case, *sets, expect=0):
+        cmd = [program(a.build), 'prm/hopper_%s.prm' % case, '--set', 'Output/overwrite=true']
+        if subprocess.run(cmd + [x for s in sets for x in ('--set', s)]).returncode != expect:
+            raise SystemExit('hopper.py all: %s did not exit with %d' % (' '.join(cmd), expect))
+
+    for case in ('radial_wedge', 'radial_cone', 'cone_30_25', 'wedge_30_25', 'wedge_30_35', 'cone_30_31',
+                 'cone_30_24_p1', 'cone_30_24_p2', 'fig9_scan'):
+        granular_dg(case)
+    granular_dg('cone_30_35', expect=3)  # the loss of hyperbolicity
+    granular_dg('fig9_scan', 'Hopper/geometry=wedge', 'Output/directory=output/hopper_fig9_scan_wedge')
+    for g in ('wedge', 'cone'):
+        granular_dg('radial_' + g, 'Hopper/initial perturbation=1e-3', 'Output/write vtu=false',
+                    'Output/directory=output/hopper_perturbed_' + g)
+    march_range(a)
+    precision(a)
+    figures(types.SimpleNamespace(output='output', figures=os.path.join('doc', 'figures')))
+    for case, text in (('cone_30_25', 'cone 30 -> 25 deg, r from 1.5 r0 to 0.05 r0: T_rr/r, white: psi every 5 deg'),
+                       ('wedge_30_35', 'wedge 30 -> 35 deg: T_rr/r, white: psi every 5 deg')):
+        subprocess.run(['xvfb-run', '-a', 'pvpython', '--no-mpi', 'contrib/paraview_figures.py', 'hopper',
+                        'output/hopper_%s/hopper-field.pvd' % case, 'doc/figures/hopper_paraview_%s.png' % case,
+                        'T_rr_over_r', text], check=True)
+
+
+if __name__ == '__main__':
+    build = ('build', dict(nargs='?', default='build'))
+    main(__doc__, {'figures': (figures, [('output', dict(nargs='?', default='output')),
+                                         ('figures', dict(nargs='?', default=os.path.join('doc', 'figures')))]),
+                   'range': (march_range, [build]), 'precision': (precision, [build]),
+                   'indicators': (indicators, [build]), 'all': (everything, [build])})

@@ -1,0 +1,242 @@
+"""ParaView pictures of runs (this ParaView build renders under a virtual X server only):
+
+  xvfb-run -a pvpython --no-mpi contrib/paraview_figures.py hopper FIELD.pvd PNG [ARRAY [TITLE]]
+  xvfb-run -a pvpython --no-mpi contrib/paraview_figures.py layered SOLUTION.pvd PNG TIME [ARRAY]
+  xvfb-run -a pvpython --no-mpi contrib/paraview_figures.py network OUTPUT_DIR PNG [TIME]
+  xvfb-run -a pvpython --no-mpi contrib/paraview_figures.py city OUTPUT_DIR PNG [TIMES]
+
+hopper: the marched field (hopper-field.pvd) in physical coordinates coloured by ARRAY
+(default T_rr_over_r), white contours of the Sokolovskii angle every 5 deg; layered: case
+(c) of the layered strip, ARRAY (default stress) at TIME; network: left the edges as tubes
+coloured by u (the vertex a sphere), right u as height above the plane, at TIME (default
+the last); city: the city grid (prm/network_city_grid.prm) from above at TIMES (default
+2,3,4,5, each the nearest output), one colour scale, its bar in a panel at the right.
+"""
+import os
+import sys
+
+from paraview.simple import (AssignViewToLayout, ColorBy, Contour, CreateLayout, CreateRenderView, ExtractSurface,
+                             GetAnimationScene, GetColorTransferFunction, GetScalarBar, Glyph, OpenDataFile, Render,
+                             ResetCamera, SaveScreenshot, Show, Text, Threshold, Tube, UpdatePipeline, WarpByScalar)
+
+
+def white_view(size, layout=None, hint=0):
+    """A white render view of the given size without the orientation axes
+    (in a cell of the layout if given)."""
+    view = CreateRenderView()
+    view.ViewSize = size
+    view.OrientationAxesVisibility = 0
+    view.Background = [1, 1, 1]
+    try:
+        view.UseColorPaletteForBackground = 0
+    except AttributeError:
+        pass
+    if layout is not None:
+        AssignViewToLayout(view=view, layout=layout, hint=hint)
+    return view
+
+
+def coloured(source, view, array, lut=None, rescale=None):
+    """source shown in view coloured by the point array (by lut if given,
+    else by the array's Viridis colour map, rescaled to the data by
+    RescaleTransferFunctionToDataRange(*rescale))."""
+    shown = Show(source, view)
+    ColorBy(shown, ('POINTS', array))
+    if lut:
+        shown.LookupTable = lut
+        return shown
+    shown.RescaleTransferFunctionToDataRange(*rescale)
+    GetColorTransferFunction(array).ApplyPreset('Viridis (matplotlib)', True)
+    shown.SetScalarBarVisibility(view, True)
+    return shown
+
+
+def scalar_bar(lut, view, title, **settings):
+    """The colour bar of lut in view: black text, the title, placed by the
+    settings (Position, ScalarBarLength, ...)."""
+    bar = GetScalarBar(lut, view)
+    bar.Title, bar.ComponentTitle = title, ''
+    bar.TitleColor = bar.LabelColor = [0, 0, 0]
+    bar.WindowLocation = 'Any Location'
+    for key, value in settings.items():
+        setattr(bar, key, value)
+
+
+def title(view, text, size, location='Upper Center'):
+    """Black text in the view."""
+    shown = Show(Text(Text=text), view)
+    shown.Color = [0, 0, 0]
+    shown.FontSize = size
+    shown.WindowLocation = location
+
+
+def flat(view, scale=None):
+    """A 2D camera on the data (parallel projection, the scale if given)."""
+    view.InteractionMode = '2D'
+    ResetCamera(view)
+    view.CameraParallelProjection = 1
+    if scale:
+        view.CameraParallelScale = scale
+
+
+def save(png, what, size, note=''):
+    SaveScreenshot(png, what, ImageResolution=size)
+    print('wrote ' + png + note)
+
+
+def threshold_edge(reader, lower, upper):
+    """Cells whose point field `edge` lies in [lower, upper]: the edges are
+    numbered 1, 2, ..., the vertices 0."""
+    selected = Threshold(Input=reader, Scalars=['POINTS', 'edge'])
+    try:
+        selected.LowerThreshold, selected.UpperThreshold = lower, upper
+    except AttributeError:  # older ParaView
+        selected.ThresholdRange = [lower, upper]
+    return selected
+
+
+def edges(reader):
+    """The network's edges as polydata (Tube needs it)."""
+    return ExtractSurface(Input=threshold_edge(reader, 0.5, 1e9))
+
+
+def vertices(reader, size):
+    """The network's vertices as spheres."""
+    return Glyph(Input=threshold_edge(reader, -0.5, 0.5), GlyphType='Sphere', ScaleArray=['POINTS', 'No scale array'],
+                 ScaleFactor=size)
+
+
+def u_scale(preset, lo, hi):
+    """The colour map of u, fixed to [lo, hi] (one scale for every view)."""
+    lut = GetColorTransferFunction('u')
+    lut.ApplyPreset(preset, True)
+    lut.AutomaticRescaleRangeMode = 'Never'
+    lut.RescaleTransferFunction(lo, hi)
+    return lut
+
+
+def hopper(pvd, png, array='T_rr_over_r', text='hopper stress field; white: psi contours every 5 deg'):
+    reader = OpenDataFile(pvd)
+    view = white_view([1100, 1100])
+    coloured(reader, view, array, rescale=(True, False))
+    scalar_bar(GetColorTransferFunction(array), view,
+               array.replace('_over_r', '/r') + (' (Pa/m)' if 'over_r' in array else ''),
+               TitleFontSize=18, LabelFontSize=16, ScalarBarLength=0.4, Position=[0.85, 0.1])
+    contour = Contour(Input=reader, ContourBy=['POINTS', 'psi_deg'], Isosurfaces=list(range(-25, 30, 5)))
+    lines = Show(contour, view)
+    ColorBy(lines, None)
+    lines.AmbientColor = lines.DiffuseColor = [1, 1, 1]
+    lines.LineWidth = 1.5
+    title(view, text, 20)
+    flat(view)
+    save(png, view, [1100, 1100])
+
+
+def layered(pvd, png, time, array='stress'):
+    reader, time = OpenDataFile(pvd), float(time)
+    times = list(reader.TimestepValues)
+    if not any(abs(t - time) < 1e-9 * max(1, time) for t in times):
+        sys.exit('paraview_figures: no output at t = %g in %s (has %s)' % (time, pvd, times))
+    scene = GetAnimationScene()
+    scene.UpdateAnimationUsingDataTimeSteps()
+    scene.AnimationTime = time
+    view = white_view([1800, 320])
+    view.ViewTime = time
+    coloured(reader, view, array, rescale=(False, True))
+    scalar_bar(GetColorTransferFunction(array), view, array, Orientation='Vertical', Position=[0.93, 0.08],
+               ScalarBarLength=0.8)
+    title(view, 'layered strip (c): %s at t = %g' % (array, time), 14, 'Upper Left Corner')
+    flat(view, 7.5)
+    save(png, view, [1800, 320])
+
+
+def network(directory, png, time=None):
+    reader = OpenDataFile(os.path.join(directory, 'solution.pvd'))
+    time = float(time) if time else list(reader.TimestepValues)[-1]
+    UpdatePipeline(time=time, proxy=reader)
+    u_range = reader.PointData['u'].GetRange()
+    layout = CreateLayout('network')
+    lut = u_scale('Viridis (matplotlib)', *u_range)
+    # left: the network in the plane, tubes coloured by u, the vertex a sphere
+    plane = white_view([900, 700], layout)
+    plane.ViewTime = time
+    lines = edges(reader)
+    tubes = Tube(Input=lines, Radius=0.018, NumberofSides=16)
+    shown = coloured(tubes, plane, 'u', lut)
+    scalar_bar(lut, plane, 'u', Position=[0.88, 0.08], ScalarBarLength=0.4)
+    shown.SetScalarBarVisibility(plane, True)
+    coloured(vertices(reader, 0.09), plane, 'u', lut)
+    title(plane, 't = %g' % time, 14, 'Upper Left Corner')
+    camera(plane, [0, 0, 6], [0, 0, 0], [0, 1, 0], 1.2)
+    # right: u as height above the plane, over the network in grey
+    height = white_view([900, 700], layout)
+    height.ViewTime = time
+    AssignViewToLayout(view=height, layout=layout, hint=2)
+    warped = WarpByScalar(Input=lines, Scalars=['POINTS', 'u'], ScaleFactor=0.35)
+    coloured(Tube(Input=warped, Radius=0.012, NumberofSides=12), height, 'u', lut)
+    base = Show(tubes, height)
+    base.DiffuseColor = base.AmbientColor = [0.75, 0.75, 0.75]
+    base.ColorArrayName = [None, '']
+    camera(height, [0.6, -5.0, 1.6], [0, 0, 0.3], [0, 0, 1], 1.5)
+    lut.RescaleTransferFunction(*u_range)  # showing can rescale; fix it again
+    Render(plane)
+    Render(height)
+    save(png, layout, [1800, 700])
+
+
+def camera(view, position, focus, up, dolly):
+    view.CameraPosition, view.CameraFocalPoint, view.CameraViewUp = position, focus, up
+    view.ResetCamera()
+    view.GetActiveCamera().Dolly(dolly)
+
+
+def city(directory, png, wanted='2,3,4,5'):
+    reader = OpenDataFile(os.path.join(directory, 'solution.pvd'))
+    available = list(reader.TimestepValues)
+    times = [min(available, key=lambda a: abs(a - float(t))) for t in wanted.split(',')]
+    # the shared colour range: 0 to the max of u over the times. UpdatePipeline(time=0)
+    # takes 0 as "no time" and gives the last step: the time goes positionally to the proxy's own
+    u_max = 0.0
+    for t in times:
+        reader.UpdatePipeline(t)
+        u_max = max(u_max, reader.PointData['u'].GetRange()[1])
+    roads = Tube(Input=edges(reader), Radius=0.04, NumberofSides=16)
+    junctions = vertices(reader, 0.16)
+    lut = u_scale('Turbo', 0.0, u_max)
+    (width, height), bar_width = (420, 470), 120
+    layout = CreateLayout('city grid')
+    try:
+        layout.SeparatorWidth = 0
+    except AttributeError:
+        pass
+    views, cell, remaining = [], 0, len(times) * width + bar_width
+    for time in times:  # a row of cells: split the remaining right part of the layout each time
+        left = layout.SplitHorizontal(cell, float(width) / remaining)
+        remaining -= width
+        view = white_view([width, height], layout, left)
+        cell = left + 1
+        view.ViewTime = time
+        for source in (roads, junctions):
+            coloured(source, view, 'u', lut).SetScalarBarVisibility(view, False)
+        title(view, 't = %g' % time, 22)
+        Render(view)  # the first render resets the camera: set ours after it
+        # top view of the square [-1, 6]^2, a margin for the tubes and the title
+        view.CameraPosition, view.CameraFocalPoint, view.CameraViewUp = [2.5, 2.5, 20], [2.5, 2.75, 0], [0, 1, 0]
+        view.CameraParallelProjection = 1
+        view.CameraParallelScale = 3.85 * height / width
+        views.append(view)
+    views.append(white_view([bar_width, height], layout, cell))  # the colour bar alone
+    scalar_bar(lut, views[-1], 'density u', TitleFontSize=18, LabelFontSize=16, Position=[0.12, 0.12],
+               ScalarBarLength=0.72, RangeLabelFormat='%.2f', ScalarBarThickness=20, Visibility=1)
+    lut.RescaleTransferFunction(0.0, u_max)  # showing can rescale; fix it again
+    for view in views:
+        Render(view)
+    save(png, layout, [len(times) * width + bar_width, height],
+         ' (times %s, u in [0, %.3g])' % (', '.join('%g' % t for t in times), u_max))
+
+
+if __name__ == '__main__':
+    figures = {'hopper': hopper, 'layered': layered, 'network': network, 'city': city}
+    if len(sys.argv) < 4 or sys.argv[1] not in figures:
+        sys.exit(__doc__)
+    figures[sys.argv[1]](*map(os.path.abspath, sys.argv[2:4]), *sys.argv[4:])
