@@ -31,8 +31,6 @@ using namespace granular_dg::hopper;
 
 namespace
 {
-  const double deg = M_PI / 180.;
-
   class Radial : public Function<1>
   {
   public:

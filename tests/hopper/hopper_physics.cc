@@ -32,7 +32,6 @@ using namespace granular_dg::hopper;
 
 namespace
 {
-  const double deg = M_PI / 180.;
   using State = System::State<double>;
 
   void

@@ -8,11 +8,6 @@
 
 namespace granular_dg::hopper
 {
-  namespace
-  {
-    constexpr double deg = M_PI / 180.;
-  }
-
   Transition::Transition(const RadialField &upper, const MohrCoulomb &material,
                          const double theta_w)
     : upper(upper)

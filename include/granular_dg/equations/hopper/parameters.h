@@ -11,8 +11,6 @@ namespace granular_dg::hopper
 {
   using namespace dealii;
 
-  constexpr double deg = M_PI / 180.;
-
   /// What a hopper run does (Hopper/mode).
   enum class Mode
   {

@@ -85,6 +85,9 @@
 
 namespace granular_dg::hopper
 {
+  /// One degree in radians (the prm gives angles in degrees).
+  constexpr double deg = M_PI / 180.;
+
   using namespace dealii;
 
   enum class Geometry
