@@ -158,21 +158,9 @@ namespace granular_dg
   void
   RunParameters::read_convergence_cfl(const std::string &text)
   {
-    convergence_cfl.clear();
-    for (const auto &s : Utilities::split_string_list(text, ','))
-      {
-        double v = 0;
-        try
-          {
-            v = Utilities::string_to_double(s);
-          }
-        catch (...)
-          {
-            require(false, "Convergence/CFL numbers", text, "comma-separated numbers");
-          }
-        require(v > 0 && v <= 1, "Convergence/CFL numbers", text, "numbers in (0, 1]");
-        convergence_cfl.push_back(v);
-      }
+    convergence_cfl = parse_doubles(text, "Convergence/CFL numbers");
+    for (const double v : convergence_cfl)
+      require(v > 0 && v <= 1, "Convergence/CFL numbers", text, "numbers in (0, 1]");
     require(!convergence || convergence_cfl.empty() ||
               convergence_cfl.size() == convergence_degrees.size(),
             "Convergence/CFL numbers", text,

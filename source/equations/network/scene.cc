@@ -62,8 +62,10 @@ namespace granular_dg::network
       std::vector<double>            cfl;
 
     private:
+      /// Refuse a method the network cannot run, then take it (and the
+      /// numerical flux and VTU switch it implies).
       void
-      require_method_fits(const RunParameters &common, const dg::DiscretizationParameters &method);
+      take_method(const RunParameters &common, const dg::DiscretizationParameters &method);
       void
       build_exact_solution(const RunParameters &common);
     };
@@ -292,7 +294,7 @@ namespace granular_dg::network
       b.set_default("Discretization/numerical flux", "upwind");
       b.set_default("Time stepping/CFL number", "0.5");
       if (b.reading())
-        require_method_fits(common, method);
+        take_method(common, method);
 
       b.section("Network");
       b.add("cells per unit length", options.cells_per_unit_length, Patterns::Integer(1),
@@ -334,7 +336,7 @@ namespace granular_dg::network
     }
 
     void
-    Case::require_method_fits(const RunParameters &common, const dg::DiscretizationParameters &m)
+    Case::take_method(const RunParameters &common, const dg::DiscretizationParameters &m)
     {
       if (common.convergence && Utilities::MPI::n_mpi_processes(MPI_COMM_WORLD) > 1)
         throw InputError("the network's convergence study (Convergence/enabled = true) runs on "
