@@ -50,9 +50,12 @@ namespace
    * them: 0.40 s of a bare MPI_Init + MPI_Finalize on this project's machines,
    * against 0.05 s as an isolated singleton with the ob1 layer (doc/
    * performance.md, "Build and start-up"). Isolated singletons all take the
-   * same job id, so nothing may live in their shared session directory: one
-   * rank needs only the self transport, and MPI-IO's shared file pointers
-   * (which nothing here uses) stay out of the "sm" component's session files.
+   * same job id and so the same session directory (/tmp/ompi.HOST.UID/jf.0/1):
+   * one run ending removes it while another creates it, and the other's
+   * MPI_Init fails (8 of 1200 bare starts, four at a time). So no session
+   * directory is made at all (0 of 4000): one rank needs only the self
+   * transport, and MPI-IO's shared file pointers (which nothing here uses)
+   * stay out of the "sm" component, the one that keeps files there.
    * A setting the user made wins; other MPI implementations ignore the names.
    */
   void
@@ -63,7 +66,8 @@ namespace
     for (const auto &[name, value] : {std::pair{"OMPI_MCA_ess_singleton_isolated", "1"},
                                       std::pair{"OMPI_MCA_pml", "ob1"},
                                       std::pair{"OMPI_MCA_btl", "self"},
-                                      std::pair{"OMPI_MCA_sharedfp", "^sm"}})
+                                      std::pair{"OMPI_MCA_sharedfp", "^sm"},
+                                      std::pair{"OMPI_MCA_orte_create_session_dirs", "0"}})
       ::setenv(name, value, /*overwrite=*/0);
   }
 

@@ -107,3 +107,16 @@ granular_dg_test(hardening/user_files_kept EXE ${TEST_PYTHON}
 # first snapshot. The words name the format; the numbers at -r 1 as above.
 granular_dg_test(hardening/memory_does_not_fit_hdf5 PRM hardening/memory_does_not_fit.prm EXIT 2
   ARGS --set Output/format=hdf5 KEEP_OUTPUT NUMDIFF -a 0 -r 1)
+
+# A run started without mpirun (an isolated Open MPI singleton, see
+# source/launcher.cc) makes no session directory: isolated singletons share
+# one, and a run ending removed it while another was starting (MPI_Init
+# failed in about 1 of 150 starts, two to four at a time). With the
+# temporary directory unusable (TMPDIR=/proc), a run that made one would
+# fail at MPI_Init; the 2D strip's mesh is p4est's, and its HDF5
+# output goes through MPI-IO.
+granular_dg_test(hardening/singleton_without_session_directory PRM ../prm/layered_2d.prm
+  ENV TMPDIR=/proc
+  ARGS --set "Time stepping/final time=0.003" --set "Output/output times=0.003"
+       --set Output/format=hdf5
+  COMPARE summary.json:status,final_time)
