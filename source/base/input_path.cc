@@ -1,6 +1,9 @@
 #include <granular_dg/base/input_path.h>
 
+#include <granular_dg/base/errors.h>
+
 #include <filesystem>
+#include <map>
 
 namespace granular_dg
 {
@@ -12,12 +15,33 @@ namespace granular_dg
       static std::string name;
       return name;
     }
+
+    std::map<std::string, std::string> &
+    parameter_origins()
+    {
+      static std::map<std::string, std::string> origins;
+      return origins;
+    }
   } // namespace
+
+  void
+  set_parameter_origin(const std::string &parameter, const std::string &origin)
+  {
+    parameter_origins()[parameter] = origin;
+  }
+
+  std::string
+  parameter_origin(const std::string &parameter)
+  {
+    const auto it = parameter_origins().find(parameter);
+    return it == parameter_origins().end() ? "" : " (" + it->second + ")";
+  }
 
   void
   set_parameter_file(const std::string &filename)
   {
     parameter_file() = filename;
+    parameter_origins().clear();
   }
 
   bool

@@ -132,29 +132,52 @@ namespace granular_dg
 
   namespace
   {
+    /// Each line of a prm file with the "Section/Sub/" path in force on it.
+    std::vector<std::pair<std::string, std::string>>
+    lines_with_sections(const std::string &filename)
+    {
+      std::ifstream                                     in(filename);
+      std::vector<std::pair<std::string, std::string>> lines;
+      std::string                                       path, text;
+      std::vector<std::string>                          stack;
+      const std::regex enter(R"(^\s*subsection\s+(.*\S)\s*$)");
+      const std::regex leave(R"(^\s*end\s*$)");
+      std::smatch      m;
+      while (std::getline(in, text))
+        {
+          text = text.substr(0, text.find('#'));
+          lines.emplace_back(path, text);
+          if (std::regex_match(text, m, enter))
+            stack.push_back(m[1]);
+          else if (std::regex_match(text, leave) && !stack.empty())
+            stack.pop_back();
+          path.clear();
+          for (const auto &s : stack)
+            path += s + "/";
+        }
+      return lines;
+    }
+
     /// The "Section/Sub/" path in force at line `line` (1-based) of a prm
     /// file, so that an error can name the parameter as --set would.
     std::string
     section_path_at(const std::string &filename, const unsigned int line)
     {
-      std::ifstream            in(filename);
-      std::vector<std::string> stack;
-      std::string              text;
-      const std::regex         enter(R"(^\s*subsection\s+(.*\S)\s*$)");
-      const std::regex         leave(R"(^\s*end\s*(#.*)?$)");
-      std::smatch              m;
-      for (unsigned int n = 1; n < line && std::getline(in, text); ++n)
-        {
-          text = text.substr(0, text.find('#'));
-          if (std::regex_match(text, m, enter))
-            stack.push_back(m[1]);
-          else if (std::regex_match(text, leave) && !stack.empty())
-            stack.pop_back();
-        }
-      std::string path;
-      for (const auto &s : stack)
-        path += s + "/";
-      return path;
+      const auto lines = lines_with_sections(filename);
+      return line >= 1 && line <= lines.size() ? lines[line - 1].first : "";
+    }
+
+    /// set_parameter_origin() for every entry the file sets: "FILE line N".
+    void
+    record_parameter_origins(const std::string &filename)
+    {
+      const std::regex set(R"(^\s*set\s+(.*\S)\s*=.*$)");
+      std::smatch      m;
+      const auto       lines = lines_with_sections(filename);
+      for (unsigned int n = 0; n < lines.size(); ++n)
+        if (std::regex_match(lines[n].second, m, set))
+          set_parameter_origin(lines[n].first + m[1].str(),
+                               filename + " line " + std::to_string(n + 1));
     }
 
     /// Turns ParameterHandler's messages into our one-line form naming the
@@ -247,6 +270,7 @@ namespace granular_dg
         throw InputError(
           translate_parameter_error(one_line_message(e), filename, ""));
       }
+    record_parameter_origins(filename);
 
     for (const auto &o : overrides)
       {
@@ -282,6 +306,10 @@ namespace granular_dg
           }
         for (; depth > 0; --depth)
           prm.leave_subsection();
+        std::string entry;
+        for (const auto &section : path)
+          entry += section + "/";
+        set_parameter_origin(entry + name, "--set");
       }
   }
 

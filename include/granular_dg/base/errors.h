@@ -22,7 +22,13 @@ namespace granular_dg
     using std::runtime_error::runtime_error;
   };
 
-  /// Throw an InputError "parameter 'name' = 'value' is not allowed: allowed".
+  /// Where the run's input set a parameter ("Time stepping/CFL number"):
+  /// " (case.prm line 12)", " (--set)", or "" for a default (input_path.cc).
+  std::string
+  parameter_origin(const std::string &parameter);
+
+  /// Throw an InputError "parameter 'name' = 'value' (case.prm line 12) is not
+  /// allowed: allowed" (the origin as parameter_origin() gives it).
   template <typename T>
   void
   require(const bool condition, const std::string &parameter, const T &value,
@@ -31,8 +37,8 @@ namespace granular_dg
     if (condition)
       return;
     std::ostringstream s;
-    s << "parameter '" << parameter << "' = '" << value
-      << "' is not allowed: " << allowed;
+    s << "parameter '" << parameter << "' = '" << value << "'" << parameter_origin(parameter)
+      << " is not allowed: " << allowed;
     throw InputError(s.str());
   }
 } // namespace granular_dg

@@ -8,6 +8,11 @@ namespace granular_dg
   void
   set_parameter_file(const std::string &filename);
 
+  /// Record where the input set a parameter ("case.prm line 12", "--set");
+  /// the last record of a parameter wins, as its value does.
+  void
+  set_parameter_origin(const std::string &parameter, const std::string &origin);
+
   /// Whether path names the parameter file of this run (the same file, by
   /// any name): a file the run must never write over or remove.
   bool
