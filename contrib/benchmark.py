@@ -8,24 +8,19 @@ Debian's libdeal.ii-doc examples as the comparator. doc/performance.md.
 
 OUT_DIR gets throughput.csv and throughput.md (the table of doc/performance.md)
 and one directory per run with its benchmark.json. step-67 is copied into
-BUILD_DIR/step67-<dim>d-p<k>/ (never into the repository; in 1D its testcase 0,
-the 2D vortex, is replaced by a smooth entropy wave with inflow data on both
-ends, and the Triangulation is serial), its constants
-patched by sed (dimension, degree, refinements, a fixed number of time steps,
-CPU + wall timers, no VTU output), built in Release and run; its throughput is
-n_dofs * 5 stages * steps / CPU time of "rk time stepping total".
-Rates are million DoF-stage updates per second per core (CPU time; median of
-the repetitions); the load average is recorded with every run. Run it alone:
-it runs one process at a time (two with --mpi).
+BUILD_DIR/step67-<dim>d-p<k>/, patched (patch_step67), built in Release and
+run; its throughput is n_dofs * 5 stages * steps / CPU time of "rk time
+stepping total". Rates are million DoF-stage updates per second per core (CPU
+time; median of the repetitions); the load average is recorded with every
+run. Run it alone: it runs one process at a time (two with --mpi).
 """
 import json
 import os
 import re
 import shutil
 import subprocess
-import sys
 
-from granular_dg import outputs, parser
+from granular_dg import arguments, outputs
 from granular_dg.run import ENV, NO_SNAPSHOTS, ROOT, cfl_limits, load, run_case
 from make_network_grid import write_grid
 
@@ -53,13 +48,10 @@ CASES = {
     # per edge: the per-edge overhead next to the star graph's
     "network_grid": ("prm/network_city_grid.prm", 1, ["Network/edge profiles=none"]),
 }
-
-
-def make_network_grid(out):
-    """the 71 x 71 grid's CSV files in OUT_DIR, named in the case's overrides"""
-    edges, vertices = (os.path.join(os.path.abspath(out), f) for f in ("grid71.csv", "grid71_vertices.csv"))
-    write_grid(71, edges, vertices)
-    CASES["network_grid"][2].extend(["Network/graph file=" + edges, "Network/vertex file=" + vertices])
+# the columns of throughput.csv; the rates are MDoF/s
+FIELDS = ["code", "case", "dim", "degree", "ranks", "engine", "n_dofs", "steps", "cpu_us_per_step",
+          "mdofs_step", "mdofs_rk", "mdofs_wall", "ratio_to_step67", "step_ratio_to_step67",
+          "load_before", "load_after"]
 
 
 def cfl_override(prm, degree):
@@ -94,6 +86,10 @@ def run_ours(build, out, name, degree, quick, ranks=1, reuse=False):
 
 
 def patch_step67(src, dim, degree, refinements, steps):
+    """step-67's source with its constants replaced (dimension, degree,
+    refinements, a fixed number of time steps, CPU + wall timers, no VTU
+    output); in 1D its testcase 0, the 2D vortex, becomes a smooth entropy
+    wave with inflow data on both ends, and the Triangulation is serial."""
     s = src
     subs = [(r"constexpr unsigned int dimension\s*= \d+;", "constexpr unsigned int dimension = %d;" % dim),
             (r"constexpr unsigned int n_global_refinements = \d+;",
@@ -166,11 +162,6 @@ def run_step67(build, dim, degree, refinements, steps, reuse=False):
     return r
 
 
-FIELDS = ["code", "case", "dim", "degree", "ranks", "engine", "n_dofs", "steps", "cpu_us_per_step",
-          "mdofs_step", "mdofs_rk", "mdofs_wall", "ratio_to_step67", "step_ratio_to_step67",
-          "load_before", "load_after"]
-
-
 def write_tables(out, rows):
     s67 = {(r["dim"], r["degree"]): r["mdofs_rk"] for r in rows if r["code"] == "step-67"}
     for r in rows:
@@ -192,25 +183,21 @@ def write_tables(out, rows):
              ["%s -> %s" % (r["load_before"], r["load_after"])] for r in rows]))
 
 
-def main():
-    ap = parser(__doc__)
-    ap.add_argument("build")
-    ap.add_argument("out")
-    ap.add_argument("--quick", action="store_true", help="short repetitions (a smoke run)")
-    ap.add_argument("--no-step67", action="store_true")
-    ap.add_argument("--degrees", default="1,2,3,4")
-    ap.add_argument("--step67-degrees", default="1,2,3,4")
-    ap.add_argument("--step67-dims", default="2,1",
-                    help="2: the vortex on 128^2 cells; 1: a smooth entropy wave on 1024 cells")
-    ap.add_argument("--cases", default=",".join(CASES))
-    ap.add_argument("--mpi", action="store_true",
-                    help="also on 2 ranks: layered_2d (p = 2, 3) and network_grid (p = 0, 2), those of --cases")
-    ap.add_argument("--reuse", action="store_true", help="take runs with a result already there")
-    a = ap.parse_args()
+if __name__ == "__main__":
+    a = arguments(__doc__, [
+        "build", "out", ("--quick", dict(action="store_true", help="short repetitions (a smoke run)")),
+        ("--no-step67", dict(action="store_true")), ("--degrees", dict(default="1,2,3,4")),
+        ("--step67-degrees", dict(default="1,2,3,4")), ("--cases", dict(default=",".join(CASES))),
+        ("--step67-dims", dict(default="2,1", help="2: the vortex on 128^2 cells; 1: an entropy wave on 1024 cells")),
+        ("--mpi", dict(action="store_true",
+                       help="also on 2 ranks: layered_2d (p = 2, 3) and network_grid (p = 0, 2), those of --cases")),
+        ("--reuse", dict(action="store_true", help="take runs with a result already there"))])
     os.makedirs(a.out, exist_ok=True)
     cases, rows = [c for c in a.cases.split(",") if c], []
-    if "network_grid" in cases:
-        make_network_grid(a.out)
+    if "network_grid" in cases:  # the 71 x 71 grid's files, named in the case's overrides
+        grid = [os.path.join(os.path.abspath(a.out), f) for f in ("grid71.csv", "grid71_vertices.csv")]
+        write_grid(71, *grid)
+        CASES["network_grid"][2].extend(["Network/graph file=" + grid[0], "Network/vertex file=" + grid[1]])
 
     def add(row):
         if row:
@@ -232,7 +219,3 @@ def main():
             refinements, steps, quick = step67[dim]
             add(run_step67(a.build, dim, p, refinements, quick if a.quick else steps, reuse=a.reuse))
     write_tables(a.out, rows)
-
-
-if __name__ == "__main__":
-    sys.exit(main())

@@ -9,23 +9,18 @@ directory, default build; the runs go to $OUTPUT_DIR, default output/):
   hopper.py range [BUILD]       Fig. 9's bar: hopper_march_range/range.csv;
   hopper.py precision [BUILD]   4.7's work precision: hopper_work_precision/work-precision.csv;
   hopper.py indicators [BUILD]  4.7's whole-march table (about 40 min of CPU):
-                                hopper_indicators/whole-march.csv;
-  hopper.py all [BUILD]         every figure from scratch: the prm/hopper_*.prm cases,
-                                the perturbed runs, range, precision, figures and the
-                                ParaView pictures (at most 30 min of CPU on one core).
+                                hopper_indicators/whole-march.csv.
 
 precision and indicators reuse the runs that completed before.
 """
 import math
 import os
-import subprocess
-import types
 
 import numpy as np
 
 from granular_dg import main, outputs, plot
 from granular_dg.compare import stress_l1
-from granular_dg.run import NO_SNAPSHOTS, ROOT, program, run_case
+from granular_dg.run import NO_SNAPSHOTS, run_case
 
 OUT = os.environ.get('OUTPUT_DIR', 'output')
 RANGE_ANGLES = [18.5, 19, 20, 21, 21.5, 22, 23, 24, 25, 26, 27, 28, 29, 30, 31, 31.5, 32, 33]
@@ -274,35 +269,9 @@ def indicators(a):
     outputs.write_csv(os.path.join(base, 'whole-march.csv'), rows)
 
 
-def everything(a):
-    os.chdir(ROOT)
-
-    def granular_dg(case, *sets, expect=0):
-        cmd = [program(a.build), 'prm/hopper_%s.prm' % case, '--set', 'Output/overwrite=true']
-        if subprocess.run(cmd + [x for s in sets for x in ('--set', s)]).returncode != expect:
-            raise SystemExit('hopper.py all: %s did not exit with %d' % (' '.join(cmd), expect))
-
-    for case in ('radial_wedge', 'radial_cone', 'cone_30_25', 'wedge_30_25', 'wedge_30_35', 'cone_30_31',
-                 'cone_30_24_p1', 'cone_30_24_p2', 'fig9_scan'):
-        granular_dg(case)
-    granular_dg('cone_30_35', expect=3)  # the loss of hyperbolicity
-    granular_dg('fig9_scan', 'Hopper/geometry=wedge', 'Output/directory=output/hopper_fig9_scan_wedge')
-    for g in ('wedge', 'cone'):
-        granular_dg('radial_' + g, 'Hopper/initial perturbation=1e-3', 'Output/write vtu=false',
-                    'Output/directory=output/hopper_perturbed_' + g)
-    march_range(a)
-    precision(a)
-    figures(types.SimpleNamespace(output='output', figures=os.path.join('doc', 'figures')))
-    for case, text in (('cone_30_25', 'cone 30 -> 25 deg, r from 1.5 r0 to 0.05 r0: T_rr/r, white: psi every 5 deg'),
-                       ('wedge_30_35', 'wedge 30 -> 35 deg: T_rr/r, white: psi every 5 deg')):
-        subprocess.run(['xvfb-run', '-a', 'pvpython', '--no-mpi', 'contrib/paraview_figures.py', 'hopper',
-                        'output/hopper_%s/hopper-field.pvd' % case, 'doc/figures/hopper_paraview_%s.png' % case,
-                        'T_rr_over_r', text], check=True)
-
-
 if __name__ == '__main__':
     build = ('build', dict(nargs='?', default='build'))
     main(__doc__, {'figures': (figures, [('output', dict(nargs='?', default='output')),
                                          ('figures', dict(nargs='?', default=os.path.join('doc', 'figures')))]),
                    'range': (march_range, [build]), 'precision': (precision, [build]),
-                   'indicators': (indicators, [build]), 'all': (everything, [build])})
+                   'indicators': (indicators, [build])})

@@ -3,22 +3,16 @@
 names it; runs that completed before are reused):
 
   layered.py study BUILD OUT REFERENCE_MODES_CSV [--quick] [--only CONFIG,... --rows-from CSV]
-      doc/layered_strip.md, "Work precision": case (b) to t = 240, the naive flux
-      against the interface-aware one (CONFIGS), P1-P3 on 2-32 cells per layer (p x
-      cells per layer <= 32) against a finer run's modes-NNNN.csv:
-      OUT/layered-study.csv, layered-work-precision.png. --quick: P2, 4 and 8 cells
-      per layer; --only runs some configurations, the others' rows come from CSV;
+      doc/layered_strip.md, "Work precision": case (b) to t = 240, the naive flux against
+      the interface-aware one (CONFIGS), P1-P3 on 2-32 cells per layer against a finer
+      run's modes-NNNN.csv: OUT/layered-study.csv, layered-work-precision.png; --only
+      runs some configurations, the others' rows come from CSV;
   layered.py wake [--xlim 0,15] [--time T] OUT.png REF RUN ...
-      doc/study/README.md, "The 2D strip's wake": the stress on y = 5 of the runs
-      of case (c) against REF at every output time they share (L1 over the wake
-      x < 15 and over the slice, the largest difference and the total variation in
-      the wake): printed and OUT.csv; the wake at --time (default REF's last);
+      doc/study/README.md, "The 2D strip's wake": the stress on y = 5 of case (c)'s runs
+      against REF at the output times they share (L1 over the wake x < 15 and the slice,
+      largest difference, total variation): printed, OUT.csv and the wake at --time;
   layered.py wake-study BUILD RUNS OUT [--reference DIR ...] [--ranks 2]
-      the same, the wake's work precision at t = 20: P2 and P3, with and without
-      subcell blending, 200 x 20 to 800 x 80 cells per [0, 100] x [0, 10] (run on
-      [0, 32], which the waves do not leave), against the references (default
-      RUNS/p2_1600_none; RUNS/pD_N_none or _blend is run when missing):
-      OUT/wake-work-precision.{csv,png}.
+      the wake's work precision at t = 20 (wake_study): OUT/wake-work-precision.{csv,png}.
 """
 import os
 import re
@@ -27,7 +21,7 @@ import numpy as np
 
 from granular_dg import main, outputs, plot
 from granular_dg.compare import slice_l1, total_variation
-from granular_dg.run import NO_SNAPSHOTS, Runs, finished
+from granular_dg.run import NO_SNAPSHOTS, Runs
 
 # name: (numerical flux, limiter, troubled-cell indicator)
 CONFIGS = {
@@ -92,8 +86,7 @@ def study(a):
     # Clawpack's second-order f-wave finite volumes on the same case (doc/layered_strip.md)
     ax.loglog([1, 5], [0.09, 0.04], "k*", ms=12, label="Clawpack f-wave")
     plot.label(ax, "CPU time of the time loop [s]", "L1 error of the strain at t = 240",
-               "layered 1D strip: error against the reference vs CPU time")
-    ax.legend(fontsize=7, ncol=2)
+               "layered 1D strip: error against the reference vs CPU time", legend=(7, 2))
     runs.save(fig, "layered-work-precision")
 
 
@@ -128,12 +121,15 @@ def wake(a):
         ax.axvspan(j, j + 1, color="0.93", lw=0)
     ax.set_xlim(*(float(v) for v in a.xlim.split(",")))
     plot.label(ax, "x (shaded: the stiff layers, rho = K = 4)", "stress on y = 5",
-               "2D layered strip, the wake at t = %g" % t)
-    ax.legend(fontsize=8, ncol=2)
+               "2D layered strip, the wake at t = %g" % t, legend=(8, 2))
     plot.save(fig, a.out, dpi=120)
 
 
 def wake_study(a):
+    """P2 and P3, with and without subcell blending, 200 x 20 to 800 x 80 cells
+    per [0, 100] x [0, 10] (run on [0, 32], which the waves do not leave),
+    against the references (default RUNS/p2_1600_none; RUNS/pD_N_none or
+    _blend is run when missing)."""
     runs = Runs(a.build, a.runs, check=True)
     cfl = {2: 0.15, 3: 0.1}  # the prm's 0.15 for P2; 0.1 for P3 (its stable CFL)
 
@@ -145,8 +141,6 @@ def wake_study(a):
         # blending computes every cell (the prm's skipping of cells at rest refuses it)
         sets += ["Limiter/scheme=none", "Limiter/subcell blending=true",
                  "Time stepping/skip cells at rest=false"] if blending else []
-        if not finished(os.path.join(a.runs, name)):
-            print("running", name, flush=True)
         r = runs.run(name, "prm/layered_2d.prm", sets, ranks=a.ranks, log=True)
         return r.summary, stress(r.directory)[T]
 

@@ -11,22 +11,13 @@ the studies' directory (default output/network_studies):
   network.py charts STUDIES FIGURE_DIR   network_eoc.png (L1 error against the level at
       degree 0 beside the paper's Table 1 and twice it), network_work_precision.png
       (degrees 0-3 on Examples 7.3 and 7.5), network_smooth_order.png (the smooth case
-      per degree, with the paper's vertex cell and without volume);
-  network.py figures [BUILD [STUDIES]]   doc/figures/: the five examples as shipped
-      (level 8) and 7.5 at degree 2 with their profiles against the exact solutions,
-      the ParaView picture of Example 7.1 and the charts.
+      per degree, with the paper's vertex cell and without volume).
 """
 import math
 import os
-import subprocess
-import types
 
 from granular_dg import main, outputs, plot
 from granular_dg.run import run_case
-
-import plot_profiles
-
-FIGURES = os.path.join("doc", "figures")
 # Table 1 of Musch, Fjordholm & Risebro, levels 3-12, as printed
 TABLE_1 = {
     '7.1': [0.07087, 0.0546, 0.03117, 0.01903, 0.01115, 0.00644, 0.00330, 0.00173, 0.00085, 0.00042],
@@ -138,21 +129,6 @@ def studies(a):
             "Convergence/CFL numbers=0.5,0.3,0.18,0.03", "Convergence/cells=8,16,32,64,128,256,512")
 
 
-def figures(a):
-    runs = [("network_example_7_%d" % e, e, (), "degree 0") for e in range(1, 6)]
-    runs.append(("network_example_7_5_dg2", 5, ("Discretization/degree=2", "Time stepping/CFL number=0.18",
-                                                "Limiter/scheme=componentwise"), "degree 2 + limiter"))
-    for name, e, sets, title in runs:
-        directory = os.path.join("output", name)
-        run_case(a.build, "prm/network_example_7_%d.prm" % e, directory, sets, check=True, keep=False)
-        plot_profiles.edges(types.SimpleNamespace(out=os.path.join(FIGURES, name + ".png"), run=directory,
-                                                  snapshot=-1, title="Example 7.%d, level 8, %s" % (e, title)))
-    subprocess.run(["xvfb-run", "-a", "pvpython", "--no-mpi", os.path.join(os.path.dirname(__file__),
-                    "paraview_figures.py"), "network", "output/network_example_7_1",
-                    os.path.join(FIGURES, "network_paraview_7_1.png"), "0.625"], check=True)
-    charts(types.SimpleNamespace(studies=a.studies, figures=FIGURES))
-
-
 def charts(a):
     for chart in (eoc, work_precision, smooth):
         chart(a.studies, a.figures)
@@ -162,4 +138,4 @@ if __name__ == "__main__":
     build = ("build", dict(nargs="?", default="build"))
     out = ("studies", dict(nargs="?", default="output/network_studies"))
     main(__doc__, {"studies": (studies, [build, out]), "tables": (lambda a: tables(a.studies), [out]),
-                   "charts": (charts, ["studies", "figures"]), "figures": (figures, [build, out])})
+                   "charts": (charts, ["studies", "figures"])})

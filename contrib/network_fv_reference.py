@@ -14,37 +14,30 @@ true L1 norm over all edges and the vertex cell at T.
 
   /usr/bin/python3 contrib/network_fv_reference.py [--levels 3-8] [--examples 7.1,7.3] [--csv DIR]
 """
-import argparse
 import math
 import os
 import types
 
 import numpy as np
 
+from granular_dg import arguments
+
 SQRT2 = math.sqrt(2.0)
 
 
+# the fluxes as (f, f', Engquist-Osher numerical flux F(u, v))
 def burgers():
     f = lambda u: 0.5 * u * u
-    fp = lambda u: u
-    # Engquist-Osher: f(max(u,0)) + f(min(v,0))
-    F = lambda u, v: f(np.maximum(u, 0.0)) + f(np.minimum(v, 0.0))
-    return f, fp, F
+    return f, lambda u: u, lambda u, v: f(np.maximum(u, 0.0)) + f(np.minimum(v, 0.0))
 
 
 def linear(a=1.0):
-    f = lambda u: a * u
-    fp = lambda u: a + 0.0 * u
-    F = lambda u, v: max(a, 0.0) * u + min(a, 0.0) * v
-    return f, fp, F
+    return lambda u: a * u, lambda u: a + 0.0 * u, lambda u, v: max(a, 0.0) * u + min(a, 0.0) * v
 
 
 def traffic(alpha):
-    f = lambda u: 4.0 * u * (1.0 - u / alpha)
-    fp = lambda u: 4.0 - 8.0 * u / alpha
-    m = 0.5 * alpha
-    F = lambda u, v: f(np.minimum(u, m)) + f(np.maximum(v, m)) - alpha
-    return f, fp, F
+    f, m = lambda u: 4.0 * u * (1.0 - u / alpha), 0.5 * alpha
+    return f, lambda u: 4.0 - 8.0 * u / alpha, lambda u, v: f(np.minimum(u, m)) + f(np.maximum(v, m)) - alpha
 
 
 def const(c):
@@ -160,12 +153,8 @@ def solve(ex, level):
     n = 2 ** level
     dx = 1.0 / n
     faces = np.linspace(0.0, 1.0, n + 1)
-    ends = []  # (edge, incoming)
-    for k, (kind, _, _, _) in enumerate(ex.edges):
-        if kind != 'out':
-            ends.append((k, True))
-        if kind != 'in':
-            ends.append((k, False))
+    # the edges' ends at the vertex: one per in or out edge, two of a loop
+    ends = [k for k, e in enumerate(ex.edges) for _ in range(2 if e[0] == 'loop' else 1)]
     dx0 = len(ends) * dx / 2
     u = [cell_integrals(init, faces, ex.init_breaks(k)) / dx
          for k, (_, _, init, _) in enumerate(ex.edges)]
@@ -173,26 +162,19 @@ def solve(ex, level):
     t, T, steps = 0.0, ex.T, 0
     while t < T * (1 - 1e-14):
         lam = max(max(np.max(np.abs(fl[1](uk))) for (_, fl, _, _), uk in zip(ex.edges, u)),
-                  max(abs(ex.edges[k][1][1](u0)) for k, _ in ends))
+                  max(abs(ex.edges[k][1][1](u0)) for k in ends))
         dt = 0.5 * dx / lam
         if t + dt >= T * (1 - 1e-14):
             dt = T - t
         new = []
         vertex_net = 0.0  # sum_out F - sum_in F
         for k, (kind, fl, _, far) in enumerate(ex.edges):
-            F = fl[2]
             uk = u[k]
-            # ghost values: left of cell 0 and right of cell n-1
-            if kind == 'in':
-                left = far if far is not None else uk[0]
-                right = u0
-            elif kind == 'out':
-                left = u0
-                right = far if far is not None else uk[-1]
-            else:
-                left, right = u0, u0
-            ext = np.concatenate(([left], uk, [right]))
-            flux = F(ext[:-1], ext[1:])  # n + 1 face fluxes
+            # ghost values left of cell 0 and right of cell n-1: the vertex's, or the far end's data
+            far_end = [far if far is not None else uk[0 if kind == 'in' else -1]]
+            left, right = far_end if kind == 'in' else [u0], far_end if kind == 'out' else [u0]
+            ext = np.concatenate((left, uk, right))
+            flux = fl[2](ext[:-1], ext[1:])  # n + 1 face fluxes
             new.append(uk - dt / dx * (flux[1:] - flux[:-1]))
             if kind != 'out':
                 vertex_net -= flux[-1]
@@ -206,17 +188,12 @@ def solve(ex, level):
         (x / dx).astype(int), n - 1)] - ex.exact(k, x, T)), faces, ex.breaks(k, T)))
         for k in range(len(ex.edges)))
     err_vertex = dx0 * abs(u0 - ex.vertex(T))
-    result = {'level': level, 'steps': steps, 'l1': err_edges + err_vertex,
-              'l1_vertex': err_vertex, 'u0': u0}
-    return result
+    return {'level': level, 'steps': steps, 'l1': err_edges + err_vertex, 'l1_vertex': err_vertex, 'u0': u0}
 
 
 def main():
-    p = argparse.ArgumentParser()
-    p.add_argument('--levels', default='3-8')
-    p.add_argument('--examples', default='7.1,7.2,7.3,7.4,7.5')
-    p.add_argument('--csv', help='write DIR/example_7_X_table.output (the test references)')
-    a = p.parse_args()
+    a = arguments(__doc__, [('--levels', dict(default='3-8')), ('--examples', dict(default='7.1,7.2,7.3,7.4,7.5')),
+                            ('--csv', dict(help='write DIR/example_7_X_table.output (the test references)'))])
     lo, hi = (int(v) for v in a.levels.split('-'))
     for name in a.examples.split(','):
         ex = EXAMPLES[name]()

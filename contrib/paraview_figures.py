@@ -19,18 +19,16 @@ from paraview.simple import (AssignViewToLayout, ColorBy, Contour, CreateLayout,
                              GetAnimationScene, GetColorTransferFunction, GetScalarBar, Glyph, OpenDataFile, Render,
                              ResetCamera, SaveScreenshot, Show, Text, Threshold, Tube, UpdatePipeline, WarpByScalar)
 
+# the titles of doc/figures/hopper_paraview_<case>.png, by the run's directory
+HOPPER_TITLES = {'hopper_cone_30_25': 'cone 30 -> 25 deg, r from 1.5 r0 to 0.05 r0: T_rr/r, white: psi every 5 deg',
+                 'hopper_wedge_30_35': 'wedge 30 -> 35 deg: T_rr/r, white: psi every 5 deg'}
+
 
 def white_view(size, layout=None, hint=0):
     """A white render view of the given size without the orientation axes
     (in a cell of the layout if given)."""
-    view = CreateRenderView()
-    view.ViewSize = size
-    view.OrientationAxesVisibility = 0
-    view.Background = [1, 1, 1]
-    try:
-        view.UseColorPaletteForBackground = 0
-    except AttributeError:
-        pass
+    view = CreateRenderView(ViewSize=size, OrientationAxesVisibility=0, Background=[1, 1, 1],
+                            UseColorPaletteForBackground=0)
     if layout is not None:
         AssignViewToLayout(view=view, layout=layout, hint=hint)
     return view
@@ -65,9 +63,7 @@ def scalar_bar(lut, view, title, **settings):
 def title(view, text, size, location='Upper Center'):
     """Black text in the view."""
     shown = Show(Text(Text=text), view)
-    shown.Color = [0, 0, 0]
-    shown.FontSize = size
-    shown.WindowLocation = location
+    shown.Color, shown.FontSize, shown.WindowLocation = [0, 0, 0], size, location
 
 
 def flat(view, scale=None):
@@ -79,30 +75,31 @@ def flat(view, scale=None):
         view.CameraParallelScale = scale
 
 
+def camera(view, position, focus, up, dolly):
+    view.CameraPosition, view.CameraFocalPoint, view.CameraViewUp = position, focus, up
+    view.ResetCamera()
+    view.GetActiveCamera().Dolly(dolly)
+
+
 def save(png, what, size, note=''):
     SaveScreenshot(png, what, ImageResolution=size)
     print('wrote ' + png + note)
 
 
-def threshold_edge(reader, lower, upper):
+def edge_cells(reader, lower, upper):
     """Cells whose point field `edge` lies in [lower, upper]: the edges are
     numbered 1, 2, ..., the vertices 0."""
-    selected = Threshold(Input=reader, Scalars=['POINTS', 'edge'])
-    try:
-        selected.LowerThreshold, selected.UpperThreshold = lower, upper
-    except AttributeError:  # older ParaView
-        selected.ThresholdRange = [lower, upper]
-    return selected
+    return Threshold(Input=reader, Scalars=['POINTS', 'edge'], LowerThreshold=lower, UpperThreshold=upper)
 
 
 def edges(reader):
     """The network's edges as polydata (Tube needs it)."""
-    return ExtractSurface(Input=threshold_edge(reader, 0.5, 1e9))
+    return ExtractSurface(Input=edge_cells(reader, 0.5, 1e9))
 
 
 def vertices(reader, size):
     """The network's vertices as spheres."""
-    return Glyph(Input=threshold_edge(reader, -0.5, 0.5), GlyphType='Sphere', ScaleArray=['POINTS', 'No scale array'],
+    return Glyph(Input=edge_cells(reader, -0.5, 0.5), GlyphType='Sphere', ScaleArray=['POINTS', 'No scale array'],
                  ScaleFactor=size)
 
 
@@ -115,7 +112,7 @@ def u_scale(preset, lo, hi):
     return lut
 
 
-def hopper(pvd, png, array='T_rr_over_r', text='hopper stress field; white: psi contours every 5 deg'):
+def hopper(pvd, png, array='T_rr_over_r', text=None):
     reader = OpenDataFile(pvd)
     view = white_view([1100, 1100])
     coloured(reader, view, array, rescale=(True, False))
@@ -127,7 +124,8 @@ def hopper(pvd, png, array='T_rr_over_r', text='hopper stress field; white: psi 
     ColorBy(lines, None)
     lines.AmbientColor = lines.DiffuseColor = [1, 1, 1]
     lines.LineWidth = 1.5
-    title(view, text, 20)
+    title(view, text or HOPPER_TITLES.get(os.path.basename(os.path.dirname(pvd)),
+                                          'hopper stress field; white: psi contours every 5 deg'), 20)
     flat(view)
     save(png, view, [1100, 1100])
 
@@ -184,12 +182,6 @@ def network(directory, png, time=None):
     save(png, layout, [1800, 700])
 
 
-def camera(view, position, focus, up, dolly):
-    view.CameraPosition, view.CameraFocalPoint, view.CameraViewUp = position, focus, up
-    view.ResetCamera()
-    view.GetActiveCamera().Dolly(dolly)
-
-
 def city(directory, png, wanted='2,3,4,5'):
     reader = OpenDataFile(os.path.join(directory, 'solution.pvd'))
     available = list(reader.TimestepValues)
@@ -205,10 +197,7 @@ def city(directory, png, wanted='2,3,4,5'):
     lut = u_scale('Turbo', 0.0, u_max)
     (width, height), bar_width = (420, 470), 120
     layout = CreateLayout('city grid')
-    try:
-        layout.SeparatorWidth = 0
-    except AttributeError:
-        pass
+    layout.SeparatorWidth = 0
     views, cell, remaining = [], 0, len(times) * width + bar_width
     for time in times:  # a row of cells: split the remaining right part of the layout each time
         left = layout.SplitHorizontal(cell, float(width) / remaining)

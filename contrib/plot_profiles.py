@@ -9,9 +9,7 @@
   plot_profiles.py slice OUT.png RUN...
       case (c) of the layered strip: stress and strain on y = 5, a panel per time;
   plot_profiles.py solitary OUT.png [--times 840,1500,2850] [--peaks 4] RUN...
-      case (b'): the stress at the times, a panel per time, and a markdown table of
-      the highest peaks (local maxima above 5 % of the largest, one per 5 length
-      units of the periodic [0, 300));
+      case (b'): the stress at the times, a panel per time; a markdown table of the peaks;
   plot_profiles.py edges OUT.png RUN [--snapshot N] [--title T]
       a network run's edge profiles (default the last snapshot), a panel per edge,
       against the exact solution if the run has it, the vertex value at its end.

@@ -13,7 +13,7 @@ schemes.md (the cheapest scheme and degree per target error); one process at a t
 import os
 import tempfile
 
-from granular_dg import outputs, parser, plot
+from granular_dg import arguments, outputs, plot
 from granular_dg.run import cfl_limits, run_case
 
 SCHEMES = ["ssp_rk3", "lsrk_5_4", "lsrk_7_4", "lsrk_9_5"]
@@ -41,8 +41,7 @@ def chart(rows, case, path):
             ax.loglog([x["cpu_s"] for x in r], [x["l2_error"] for x in r], style, ms=4,
                       label="%s P%d" % (scheme, degree))
     plot.label(ax, "CPU time of the time loop [s]", "L2 error at the final time",
-               "linear wave %s: schemes at 0.95 of their CFL limit" % case.upper())
-    ax.legend(fontsize=7, ncol=2)
+               "linear wave %s: schemes at 0.95 of their CFL limit" % case.upper(), legend=(7, 2))
     plot.save(fig, path, dpi=120)
 
 
@@ -61,10 +60,7 @@ def cheapest(rows):
 
 
 def main():
-    p = parser(__doc__)
-    p.add_argument("build")
-    p.add_argument("out")
-    a = p.parse_args()
+    a = arguments(__doc__, ["build", "out"])
     os.makedirs(a.out, exist_ok=True)
     limits = cfl_limits()
     with tempfile.TemporaryDirectory() as runs:  # the runs' own files are not kept

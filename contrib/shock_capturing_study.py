@@ -13,7 +13,7 @@ case); runs that completed before are reused.
 """
 import os
 
-from granular_dg import outputs, parser, plot
+from granular_dg import arguments, outputs, plot
 from granular_dg.compare import stress_l1, value_at
 from granular_dg.run import Runs
 
@@ -103,13 +103,8 @@ def chart(rows, cases, runs):
 
 
 def main():
-    p = parser(__doc__)
-    p.add_argument("build")
-    p.add_argument("out")
-    p.add_argument("ref_dir")
-    p.add_argument("--quick", action="store_true", help="one mesh per case")
-    p.add_argument("--cases", default=",".join(CASES))
-    a = p.parse_args()
+    a = arguments(__doc__, ["build", "out", "ref_dir", ("--quick", dict(action="store_true", help="one mesh per case")),
+                            ("--cases", dict(default=",".join(CASES)))])
     cases, rows = a.cases.split(","), []
     runs, references = Runs(a.build, a.out, check=True), Runs(a.build, a.ref_dir, check=True)
     for case in cases:

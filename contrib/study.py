@@ -10,28 +10,21 @@ fail (study_failures.py).
 
 Runs go to OUT_DIR/runs/, --jobs at a time (default 2), and are reused when
 they are there (delete them to rerun); the charted CPU times are those of
-each process. A stability map runs the grid CFL = f/(2p+1), at most 1 (the
-program's range), f in DEFAULT_FACTORS or the map's own (in the full study on
-with EXTEND_FACTORS while every run is stable: limited schemes stay bounded
-far beyond the linear limit), then bisects the limit, the largest stable CFL,
-between the largest stable and the smallest non-stable value to a relative
-width of 5 % (15 % with --quick); classify() names the states.
+each process. stability() says how a map finds the limits, classify() names
+the states.
 """
 import math
 import os
-import sys
 import textwrap
 import time
 
-from granular_dg import outputs, parser, plot
+from granular_dg import arguments, outputs, plot
 from granular_dg.compare import stress_l1
 from granular_dg.outputs import select
 from granular_dg.run import NO_SNAPSHOTS, Runs, load, tag
 
 import study_failures
 from study_failures import LINEAR_RK3, NAN, strain_l1
-
-plt = plot.pyplot()
 
 
 def sum_l1(s, d):
@@ -125,8 +118,7 @@ BLENDING = ["Limiter/subcell blending=true"]
 # Stability maps. choices: (label, --set overrides); quick_choices: indices
 # used with --quick; p0_choices: the choices run at degree 0 (default all;
 # degree 0 has no slopes to limit, so choices that differ only in the
-# limiter are one scheme there); the CFL grid is f/(2p+1) for f in factors, at most
-# 1 (the program refuses larger CFL numbers).
+# limiter are one scheme there); factors: see stability().
 STABILITY = {
     # the smooth linear wave in one material: LLF = impedance = upwind flux here
     "layered_1d": dict(
@@ -196,8 +188,6 @@ STABILITY = {
 }
 DEFAULT_FACTORS = [0.5, 1.0, 1.5, 2.0, 3.0]
 QUICK_FACTORS = [0.5, 1.5]
-# (full study) while every grid run is stable, the grid goes on with these
-# factors up to CFL 1: where a limiter holds the scheme bounded
 EXTEND_FACTORS = [5.0, 8.0, 12.0]
 
 
@@ -228,7 +218,7 @@ def work_precision(ctx, name, sc):
             r["blown_up"] = int(r["exit"] != 0 or not (r["error"] <= min(1., previous)))
             previous = r["error"] if math.isfinite(r["error"]) else previous
     ctx.csv(name + "-work-precision", rows)
-    fig, axes = plt.subplots(1, 2, figsize=(10, 4.2), sharey=True)
+    fig, axes = plot.subplots(1, 2, figsize=(10, 4.2), sharey=True)
     for ax, key, label in ((axes[0], "time_loop_cpu_s", "CPU time of the time loop [s]"),
                            (axes[1], "run_wall_s", "wall time of the run [s]")):
         for p in degrees:
@@ -259,10 +249,8 @@ def classify(code, err, e, e0, grew=None, blowup=1.0):
     stable otherwise."""
     if code == 3:  # the run failed: inadmissible or non-finite state
         return "blown up" if any(w in err.lower() for w in ("finite", "nan", "inf")) else "inadmissible"
-    if code == 2:  # bad input: the program refuses the run
-        return "refused"
     if code != 0:
-        return "failed"
+        return "refused" if code == 2 else "failed"
     if not math.isfinite(e) or e > blowup:
         return "blown up"
     if grew is not None:  # energy-stable scheme: growth is the instability
@@ -271,8 +259,13 @@ def classify(code, err, e, e0, grew=None, blowup=1.0):
 
 
 def stability(ctx, name, sp):
-    """One map: for every (choice, degree) the CFL grid f/(2p+1), then the
-    bisection of the limit; the pairs run --jobs at a time."""
+    """One map: for every (choice, degree) the grid CFL = f/(2p+1), at most 1
+    (the program's range), f in DEFAULT_FACTORS or the map's factors (in the
+    full study on with EXTEND_FACTORS while every run is stable: limited
+    schemes stay bounded far beyond the linear limit), then the bisection of
+    the limit, the largest stable CFL, between the largest stable and the
+    smallest non-stable value to a relative width of 5 % (15 % with --quick);
+    the pairs run --jobs at a time."""
     degrees = ctx.pick(sp, "degrees")
     choices = [sp["choices"][i] for i in sp["quick_choices"]] if ctx.quick else sp["choices"]
     if not choices or not degrees:
@@ -298,8 +291,7 @@ def stability(ctx, name, sp):
             print("%s [%s] P%d CFL %.4g: %s (error %.3e)" % (name, label, p, cfl, c, e), flush=True)
             return c, e
 
-        # the grid (the program's range of the CFL number is (0, 1]); e0: the
-        # error at its first CFL with a finite error
+        # the grid; e0: the error at its first CFL with a finite error
         states, e0 = [], None
         for cfl in sorted({min(1.0, f / (2 * p + 1)) for f in factors}):
             c, e = one(cfl, e0)
@@ -338,10 +330,9 @@ def energy_grew(d):
     return not (e[-1] <= e[0] * (1 + 1e-10))
 
 
-COLORS = {"stable": "tab:green", "oscillatory": "tab:orange", "inadmissible": "tab:purple",
-          "blown up": "tab:red", "refused": "gray", "failed": "black"}
-MARKERS = {"stable": "o", "oscillatory": "s", "inadmissible": "D", "blown up": "x",
-           "refused": "_", "failed": "+"}
+# state: (colour, marker)
+STATES = {"stable": ("tab:green", "o"), "oscillatory": ("tab:orange", "s"), "inadmissible": ("tab:purple", "D"),
+          "blown up": ("tab:red", "x"), "refused": ("gray", "_"), "failed": ("black", "+")}
 
 
 def stability_chart(ctx, name, sp, choices, degrees, rows, limits):
@@ -349,16 +340,16 @@ def stability_chart(ctx, name, sp, choices, degrees, rows, limits):
     n = len(choices)
     panel, top, bottom = 0.28 * len(degrees) + 0.5, 0.55, 0.8  # inches
     height = top + bottom + n * panel
-    fig, axes = plt.subplots(n, 1, figsize=(8, height), sharex=True, squeeze=False)
+    fig, axes = plot.subplots(n, 1, figsize=(8, height), sharex=True, squeeze=False)
     fig.subplots_adjust(left=0.07, right=0.98, top=1 - top / height, bottom=bottom / height,
                         hspace=0.32 / (panel - 0.32))
     handles = {}
     for ax, (label, _) in zip(axes[:, 0], choices):
-        for state in COLORS:
+        for state, (colour, marker) in STATES.items():
             sel = select(rows, state=state, choice=label)
             if sel:
                 handles[state] = ax.scatter([r["cfl"] for r in sel], [r["degree"] for r in sel],
-                                            c=COLORS[state], marker=MARKERS[state], s=24)
+                                            c=colour, marker=marker, s=24)
         for l in select(limits, choice=label):
             if l["cfl_limit"] != "":
                 bounded = l["first_unstable_cfl"] != ""
@@ -425,23 +416,16 @@ def cheapest(ctx, all_rows):
             [[r["scene"], "%g" % r["target_error"]] + [r[k] for k in list(r)[2:]] for r in res]))
 
 
-def main():
-    ap = parser(__doc__)
-    ap.add_argument("build")
-    ap.add_argument("out")
-    ap.add_argument("--quick", action="store_true", help="a few meshes, degrees and choices (a smoke run)")
-    ap.add_argument("--jobs", type=int, default=2,
-                    help="granular_dg processes at a time for the stability and failure runs")
-    ap.add_argument("--only", default=",".join(SCENES),
-                    help="scenes (work precision, their stability maps and failure modes)")
-    ap.add_argument("--skip-work-precision", action="store_true")
-    ap.add_argument("--skip-stability", action="store_true")
-    ap.add_argument("--skip-failures", action="store_true")
-    a = ap.parse_args()
+if __name__ == "__main__":
+    a = arguments(__doc__, [
+        "build", "out", ("--quick", dict(action="store_true", help="a few meshes, degrees and choices (a smoke run)")),
+        ("--jobs", dict(type=int, default=2, help="granular_dg processes at a time")),
+        ("--only", dict(default=",".join(SCENES), help="scenes (work precision, stability maps, failure modes)")),
+        ("--skip-work-precision", dict(action="store_true")), ("--skip-stability", dict(action="store_true")),
+        ("--skip-failures", dict(action="store_true"))])
     ctx = Runs(a.build, a.out, a.quick, a.jobs, subdir="runs", sets=NO_SNAPSHOTS, formats=("svg",))
-    only = a.only.split(",")
+    only, parts, all_rows, limits = a.only.split(","), [], [], []
     l0, t0, c0 = load(), time.time(), os.times()
-    parts = []
 
     def timed(label, f):
         s = time.time()
@@ -449,7 +433,6 @@ def main():
         parts.append("%s %.0f s" % (label, time.time() - s))
         return r
 
-    all_rows, limits = [], []
     if not a.skip_work_precision:
         for name in only:
             all_rows += timed("work precision " + name, lambda: work_precision(ctx, name, SCENES[name]))
@@ -463,16 +446,11 @@ def main():
     if not a.skip_failures:
         timed("failures", lambda: study_failures.run_all(ctx, only))
     c1 = os.times()
+    runtime = ("study %s (%s), %d jobs: wall %.1f s, CPU of the runs %.1f s, load at the start %s, at the end %s; "
+               "granular_dg runs executed %d, reused %d\nparts (wall): %s\n" % (
+                   "quick" if a.quick else "full", ",".join(only), a.jobs, time.time() - t0,
+                   (c1.children_user - c0.children_user) + (c1.children_system - c0.children_system),
+                   l0, load(), ctx.count["executed"], ctx.count["reused"], "; ".join(parts)))
     with open(os.path.join(a.out, "runtime.txt"), "w") as f:
-        f.write("study %s (%s), %d jobs: wall %.1f s, CPU of the runs %.1f s, load at the start %s, "
-                "at the end %s; granular_dg runs executed %d, reused %d\n" % (
-                    "quick" if a.quick else "full", ",".join(only), a.jobs, time.time() - t0,
-                    (c1.children_user - c0.children_user) + (c1.children_system - c0.children_system),
-                    l0, load(), ctx.count["executed"], ctx.count["reused"]))
-        f.write("parts (wall): %s\n" % "; ".join(parts))
-    with open(os.path.join(a.out, "runtime.txt")) as f:
-        print(f.read())
-
-
-if __name__ == "__main__":
-    sys.exit(main())
+        f.write(runtime)
+    print(runtime)

@@ -16,7 +16,6 @@ from granular_dg import outputs, plot
 from granular_dg.outputs import select
 from granular_dg.run import tag
 
-plt = plot.pyplot()
 NAN = float("nan")
 # SSP-RK3 with upwind DG of degree p on u_t + u_x = 0: the linear stability
 # limit of nu = a dt/h (Fourier analysis, contrib/dg_cfl_limits.py)
@@ -85,7 +84,7 @@ def interfaces(ctx):
 
     rows = ctx.pmap(one, [(c, p, n) for c in INTERFACE_CONFIGS for p in degrees for n in per_layer])
     ctx.csv("failure-interfaces", rows)
-    fig, ax = plt.subplots(1, 2, figsize=(11, 4.2))
+    fig, ax = plot.subplots(1, 2, figsize=(11, 4.2))
     notes = ["**interfaces** (layered strip [0, %d] to t = %g, L1 strain error against P3 "
              "impedance at %d cells per layer; CFL 0.8/(2p+1)):" % (LAYERS, LAYERED_T, 8 if ctx.quick else 32)]
     for label, _, _, color in INTERFACE_CONFIGS:
@@ -111,10 +110,8 @@ def interfaces(ctx):
                 math.log(ok[-2]["l1_strain_error"] / ok[-1]["l1_strain_error"]) /
                 math.log(ok[-1]["cells_per_layer"] / ok[-2]["cells_per_layer"])) if len(ok) >= 2 else ""
             notes.append("  - %s, P%d, cells per layer %s%s" % (label, p, cells, eoc))
-    ax[0].set_ylabel("L1 error of the strain at t = %g" % LAYERED_T)
-    ax[1].set_ylabel("largest stress jump across an interface at t = %g" % LAYERED_T)
-    for a in ax:
-        plot.label(a, "cells per layer")
+    for a, y in zip(ax, ("L1 error of the strain", "largest stress jump across an interface")):
+        plot.label(a, "cells per layer", y + " at t = %g" % LAYERED_T)
         plot.log_ticks(a, per_layer)
     ax[0].legend(fontsize=6, ncol=2)
     fig.suptitle("Naive LLF on (eps, m) against the interface-aware impedance flux at material "
@@ -149,7 +146,7 @@ def friction(ctx):
 
     rows = ctx.pmap(one, items)
     ctx.csv("failure-friction", rows)
-    fig, ax = plt.subplots(2, 2, figsize=(11, 7))
+    fig, ax = plot.subplots(2, 2, figsize=(11, 7))
     floor = {"velocity_sign_flips": 0.5, "probe_strain_drift": 1e-17}
     notes = ["**friction** (column m = 1 on (0, 10), P2, characteristic limiter, t = 8; the probe "
              "z = 0.5 is at rest from t = 3.3 in the exact solution):"]
@@ -170,10 +167,8 @@ def friction(ctx):
             joined(by_dt, "probe_strain_drift", 2), joined(by_dt, "max_velocity", 2)))
     for row, (xl, key) in enumerate((("cells on (0, 10) (CFL 0.2, dt ~ dx)", "cells"),
                                      ("time step dt (400 cells)", "dt"))):
-        ax[row, 0].set_ylabel("velocity sign flips")
-        ax[row, 1].set_ylabel("|strain drift| of the probe, t = 4..8")
-        for col in range(2):
-            plot.label(ax[row, col], xl)
+        for col, y in enumerate(("velocity sign flips", "|strain drift| of the probe, t = 4..8")):
+            plot.label(ax[row, col], xl, y)
             plot.log_ticks(ax[row, col], [r[key] for r in rows if r["exit"] == 0 and math.isfinite(r[key])])
     ax[0, 0].legend(fontsize=7)
     fig.suptitle("Coulomb friction in the column (m = 1, t = 8): chatter (velocity sign flips) and creep "
@@ -190,7 +185,7 @@ def rk3(ctx):
         return ["**rk3**: no layered_1d-stability.csv (stability maps skipped)"]
     rows = outputs.read_table(path, numbers=False).rows()
     degrees = sorted({int(r["degree"]) for r in rows})
-    fig, ax = plt.subplots(figsize=(7, 4.2))
+    fig, ax = plot.subplots(figsize=(7, 4.2))
     out = []
     notes = ["**rk3** (smooth wave, 32 cells, t = 1, LLF, no limiter; from layered_1d-stability.csv):"]
     for p in degrees:
@@ -211,13 +206,10 @@ def rk3(ctx):
                 p, fmt(good[-1]["error"]), fmt(good[-1]["cfl_over_linear_limit"]), fmt(bad[0]["error"]),
                 bad[0]["state"], fmt(bad[0]["cfl_over_linear_limit"])))
     ax.axvline(1, color="k", lw=0.8, ls=":")
-    ax.set_xlabel("CFL / linear SSP-RK3 DG limit of the degree (1.256, 0.410, 0.210, 0.130, 0.0897)")
-    ax.set_ylabel("L1 error at t = 1 (smooth wave, 32 cells)")
     plot.log_ticks(ax, [0.25, 0.5, 0.75, 1, 1.25, 1.5, 2])
-    ax.set_title("SSP-RK3 DG beyond its linear CFL limit (smooth wave, LLF, no limiter)\n"
-                 "(o stable, s energy grew, x blown up)", fontsize=9)
-    ax.grid(alpha=0.3, which="both")
-    ax.legend(fontsize=7)
+    plot.label(ax, "CFL / linear SSP-RK3 DG limit of the degree (1.256, 0.410, 0.210, 0.130, 0.0897)",
+               "L1 error at t = 1 (smooth wave, 32 cells)", "SSP-RK3 DG beyond its linear CFL limit (smooth wave, "
+               "LLF, no limiter)\n(o stable, s energy grew, x blown up)", legend=7, size=9)
     ctx.save(fig, "failure-rk3")
     ctx.csv("failure-rk3", out)
     return notes
@@ -261,7 +253,7 @@ def shock(ctx):
     rows = ctx.pmap(one, [(p, l) for l in limiters for p in degrees])
     ctx.csv("failure-shock", [{k: v for k, v in r.items() if k != "profile"} for r in rows])
     done = [r for r in rows if r["exit"] == 0]
-    fig, ax = plt.subplots(1, 2, figsize=(11, 4.2))
+    fig, ax = plot.subplots(1, 2, figsize=(11, 4.2))
     for (label, lim), c in zip(limiters, ("tab:blue", "tab:red")):
         sel = select(done, limiter=label)
         ax[0].plot([r["degree"] for r in sel], [r["overshoot_pct"] for r in sel], "o-", color=c,
@@ -271,10 +263,7 @@ def shock(ctx):
     top = max([r.get("overshoot_pct", 0) for r in rows] + [r.get("undershoot_pct", 0) for r in rows] + [1])
     ax[0].set_ylim(-0.05 * top, 1.6 * top)  # room for the legend above the curves
     ax[0].set_xticks(degrees)
-    ax[0].set_xlabel("degree")
-    ax[0].set_ylabel("%% of eps_w = %.4f at t = %g" % (eps_w, t_end))
-    ax[0].legend(fontsize=7)
-    ax[0].grid(alpha=0.3)
+    plot.label(ax[0], "degree", "%% of eps_w = %.4f at t = %g" % (eps_w, t_end), legend=7, which="major")
     # the profiles at the shock: the steepest drop of the last limited run's
     limited = select(done, limiter=limiters[0][0])
     if limited:
@@ -327,7 +316,7 @@ def hopper(ctx):
 
     rows = ctx.pmap(one, [(g, a, n) for g, a in cases for n in meshes] + finest)
     ctx.csv("failure-hopper", rows)
-    fig, ax = plt.subplots(1, 2, figsize=(11, 4.2))
+    fig, ax = plot.subplots(1, 2, figsize=(11, 4.2))
     labels = ["%s 30 -> %g" % c for c in cases]
     notes = ["**hopper** (P1, CFL 1/3, characteristic limiter, marched to tau = %g):" % HOPPER_TAU]
     for i, (g, a) in enumerate(cases):
@@ -345,19 +334,14 @@ def hopper(ctx):
                 fmt(r["min_hyperbolicity_margin"], 2), fmt(r["tau_of_min_margin"], 3))) if r["exit"] == 0 else
                 "fails at tau %s (theta %s deg)" % (fmt(r["tau_reached"], 4), fmt(r["theta_of_min_margin_deg"], 2)))
             for r in sel)))
-    plot.log_ticks(ax[0], [r["cells"] for r in rows])
-    ax[0].set_yticks(range(len(cases)))
-    ax[0].set_yticklabels(labels, fontsize=7)
-    ax[0].set_ylim(-0.5, len(cases) - 0.3)
-    ax[0].set_xlabel("cells N (P1)")
-    ax[0].set_title("o completes to tau = %g (m: min hyperbolicity margin), x loses "
-                    "hyperbolicity (tau)" % HOPPER_TAU, fontsize=8)
-    plot.label(ax[1], "cells N (P1)", "tau at which hyperbolicity is lost")
-    plot.log_ticks(ax[1], [r["cells"] for r in rows])
-    if ax[1].get_legend_handles_labels()[0]:
-        ax[1].legend(fontsize=7)
     for a in ax:
-        a.grid(alpha=0.3, which="both")
+        plot.log_ticks(a, [r["cells"] for r in rows])
+    ax[0].set_yticks(range(len(cases)), labels, fontsize=7)
+    ax[0].set_ylim(-0.5, len(cases) - 0.3)
+    plot.label(ax[0], "cells N (P1)", title="o completes to tau = %g (m: min hyperbolicity margin), x loses "
+               "hyperbolicity (tau)" % HOPPER_TAU, size=8)
+    plot.label(ax[1], "cells N (P1)", "tau at which hyperbolicity is lost",
+               legend=7 if ax[1].get_legend_handles_labels()[0] else None)
     fig.suptitle("Hopper: steep-to-shallow transitions (30 deg -> shallower lower hopper) lose "
                  "hyperbolicity where the corner shock focuses on the axis", fontsize=9)
     ctx.save(fig, "failure-hopper")

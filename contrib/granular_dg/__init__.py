@@ -2,25 +2,33 @@
 its outputs (outputs), comparing runs (compare) and matplotlib set-up (plot).
 The scripts put contrib/ on the path by being there; run them with Debian's
 /usr/bin/python3. The readers need only the standard library and numpy."""
+import argparse
 
 
 def parser(doc):
     """An ArgumentParser whose help is the script's docstring."""
-    import argparse
     return argparse.ArgumentParser(description=doc, formatter_class=argparse.RawDescriptionHelpFormatter)
+
+
+def add(to, spec):
+    """Adds the arguments of spec to the parser `to`, each a name or (name, add_argument's keywords)."""
+    for argument in spec:
+        name, options = (argument, {}) if isinstance(argument, str) else argument
+        to.add_argument(name, **options)
+    return to
+
+
+def arguments(doc, spec):
+    """The parsed command line of a script without commands."""
+    return add(parser(doc), spec).parse_args()
 
 
 def main(doc, commands):
     """Runs the command of the command line COMMAND ARGUMENTS...: commands is
-    {COMMAND: (function, arguments)}, each argument a name or (name,
-    add_argument's keywords); the function gets the parsed arguments."""
-    sub = parser(doc)
-    choices = sub.add_subparsers(dest="command", required=True)
-    for name, (function, arguments) in commands.items():
-        command = choices.add_parser(name)
-        command.set_defaults(function=function)
-        for argument in arguments:
-            name, options = (argument, {}) if isinstance(argument, str) else argument
-            command.add_argument(name, **options)
-    a = sub.parse_args()
+    {COMMAND: (function, spec)}; the function gets the parsed arguments."""
+    top = parser(doc)
+    choices = top.add_subparsers(dest="command", required=True)
+    for name, (function, spec) in commands.items():
+        add(choices.add_parser(name), spec).set_defaults(function=function)
+    a = top.parse_args()
     a.function(a)

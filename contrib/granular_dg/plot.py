@@ -36,7 +36,8 @@ def save(fig, path, *formats, dpi=110, tight=True, say=False, **kwargs):
 
 
 def label(ax, x=None, y=None, title=None, legend=None, size=None, grid=0.3, which="both"):
-    """Axis labels, title (font size), grid (its alpha, which ticks) and legend (its font size)."""
+    """Axis labels, title (font size), grid (its alpha, which ticks) and
+    legend (its font size, or (font size, columns))."""
     if x:
         ax.set_xlabel(x)
     if y:
@@ -46,7 +47,8 @@ def label(ax, x=None, y=None, title=None, legend=None, size=None, grid=0.3, whic
     if grid:
         ax.grid(alpha=grid, which=which)
     if legend:
-        ax.legend(fontsize=legend)
+        font, ncol = legend if isinstance(legend, tuple) else (legend, 1)
+        ax.legend(fontsize=font, ncol=ncol)
 
 
 def log_ticks(ax, values, axis="x"):

@@ -23,11 +23,6 @@ ENV = dict(OMPI_ALLOW_RUN_AS_ROOT="1", OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1",
 Run = collections.namedtuple("Run", "code summary stderr directory wall_s cpu_s")
 
 
-def program(build):
-    """The granular_dg of a build directory."""
-    return os.path.join(os.path.abspath(build), "granular_dg")
-
-
 def load(fields=1):
     """The load average (1, 5, 15 min: the first `fields`) as text."""
     with open("/proc/loadavg") as f:
@@ -37,11 +32,21 @@ def load(fields=1):
 def command(build, prm, directory, sets=(), ranks=1, benchmark=False):
     """The command line of a run: PRM (relative to the repository unless
     absolute) into DIRECTORY, overwriting, no progress lines, then SETS."""
-    cmd = [program(build)] + (["--benchmark"] if benchmark else []) + [os.path.join(ROOT, prm)]
+    cmd = [os.path.join(os.path.abspath(build), "granular_dg")] + ["--benchmark"] * benchmark
+    cmd.append(os.path.join(ROOT, prm))
     for s in ("Output/directory=" + os.path.abspath(directory), "Output/overwrite=true",
               "Output/progress interval=0") + tuple(sets):
         cmd += ["--set", s]
     return (["mpirun", "-np", str(ranks)] if ranks > 1 else []) + cmd
+
+
+def _summary(directory):
+    """summary.json of a run as a dict, {} when there is none (bad input)."""
+    try:
+        with open(os.path.join(directory, "summary.json")) as f:
+            return json.load(f)
+    except (OSError, ValueError):
+        return {}
 
 
 def finished(directory):
@@ -76,7 +81,11 @@ def run_case(build, prm, directory, sets=(), ranks=1, benchmark=False, reuse=Fal
                                  directory.rstrip("/") + ".log" if log else None)
         done = Run(code, _summary(directory), err, directory, time.time() - t0, cpu)
         if keep:
-            done = record(done, l0)
+            done = done._replace(summary=dict(done.summary, _run_wall_s=done.wall_s, _run_cpu_s=cpu, _load=l0))
+            with open(os.path.join(directory, "summary.json"), "w") as f:
+                json.dump(done.summary, f)
+            with open(os.path.join(directory, "exit.txt"), "w") as f:
+                f.write("%d\n%s" % (code, err))
     if check and done.code != 0:
         sys.exit("granular_dg %s into %s: exit %d: %s" % (prm, directory, done.code, done.stderr))
     return done
@@ -95,34 +104,6 @@ def execute(cmd, log=None):
         with open(log, "w") as f:
             f.write(stdout + stderr)
     return p.returncode, stderr.strip().replace("\n", " "), usage.ru_utime + usage.ru_stime
-
-
-def _summary(directory):
-    """summary.json of a run as a dict, {} when there is none (bad input)."""
-    try:
-        with open(os.path.join(directory, "summary.json")) as f:
-            return json.load(f)
-    except (OSError, ValueError):
-        return {}
-
-
-def record(run, load_before):
-    """Keeps the exit code, stderr, times and load of a run in its directory."""
-    s = dict(run.summary, _run_wall_s=run.wall_s, _run_cpu_s=run.cpu_s, _load=load_before)
-    with open(os.path.join(run.directory, "summary.json"), "w") as f:
-        json.dump(s, f)
-    with open(os.path.join(run.directory, "exit.txt"), "w") as f:
-        f.write("%d\n%s" % (run.code, run.stderr))
-    return run._replace(summary=s)
-
-
-def pmap(f, items, jobs=2):
-    """f over items, `jobs` at a time (threads), the results in order."""
-    items = list(items)
-    if jobs <= 1 or len(items) <= 1:
-        return [f(i) for i in items]
-    with concurrent.futures.ThreadPoolExecutor(jobs) as ex:
-        return list(ex.map(f, items))
 
 
 def cfl_limits():
@@ -157,7 +138,9 @@ class Runs:
         return run_case(self.build, prm, directory, self.sets + tuple(sets), reuse=True, check=self.check, **kwargs)
 
     def pmap(self, f, items):
-        return pmap(f, items, self.jobs)
+        """f over items, --jobs at a time (threads), the results in order."""
+        with concurrent.futures.ThreadPoolExecutor(self.jobs) as pool:
+            return list(pool.map(f, items))
 
     def pick(self, table, key):
         """table[key], or table["quick_" + key] in a quick study."""
