@@ -3,7 +3,7 @@
 
 # Case (b) at 4 cells per layer, P2, t = 240, with both fluxes and the
 # limiter in every cell (Limiter/indicator = everywhere; the shipped case
-# limits only flagged cells, tested by layered/indicator_accuracy): regression
+# limits only flagged cells, tested by layered_strip/indicator_accuracy): regression
 # of the cell-centre profiles at t = 240 (stored from the runs reviewed in
 # doc/layered_strip.md). Tolerance 1e-7 absolute (round-off is ~1e-12 here).
 foreach(variant aware naive)
@@ -14,7 +14,7 @@ foreach(variant aware naive)
     set(flux local_lax_friedrichs)
     set(limiter componentwise)
   endif()
-  granular_dg_test(layered/profile_${variant} PRM ../prm/layered_1d.prm
+  granular_dg_test(layered_strip/profile_${variant} PRM ../prm/layered_1d.prm
     ARGS --set "Discretization/numerical flux=${flux}" --set Limiter/scheme=${limiter}
          --set Limiter/indicator=everywhere --set "Output/profile points per cell=1" --set "Output/write vtu=false"
     COMPARE profile-0003.csv NUMDIFF -a 1e-7 -r 0)
@@ -28,10 +28,10 @@ endforeach()
 # flux must keep it below 0.02 (measured 6.6e-3; .output 0, tolerance 0.02);
 # local Lax-Friedrichs on (eps, m) must exceed 1, i.e. jumps of the order of
 # the stress itself (measured 4.66; .output 5, tolerance 4: the band [1, 9]).
-granular_dg_test(layered/interface_jump_aware PRM ../prm/layered_1d.prm
+granular_dg_test(layered_strip/interface_jump_aware PRM ../prm/layered_1d.prm
   ARGS --set Limiter/indicator=everywhere --set "Output/write vtu=false"
   COMPARE summary.json:diagnostics/interface_stress_jump_max NUMDIFF -a 0.02 -r 0)
-granular_dg_test(layered/interface_jump_naive PRM ../prm/layered_1d.prm
+granular_dg_test(layered_strip/interface_jump_naive PRM ../prm/layered_1d.prm
   ARGS --set "Discretization/numerical flux=local_lax_friedrichs" --set Limiter/scheme=componentwise
        --set Limiter/indicator=everywhere --set "Output/write vtu=false"
   COMPARE summary.json:diagnostics/interface_stress_jump_max NUMDIFF -a 4 -r 0)
@@ -41,7 +41,7 @@ granular_dg_test(layered/interface_jump_naive PRM ../prm/layered_1d.prm
 # domain is cut at x = 20: the waves travel at most 2.45 t = 12.2 by t = 5, so
 # the cut case equals the full one there (checked: identical to 1e-17).
 foreach(ranks 1 2)
-  granular_dg_test(layered/strip_2d_np${ranks} PRM ../prm/layered_2d.prm
+  granular_dg_test(layered_strip/strip_2d_np${ranks} PRM ../prm/layered_2d.prm
     ARGS --set "Time stepping/final time=5" --set "Output/output times="
          --set "Mesh/x max=20" --set "Mesh/cells x=80" --set "Output/write vtu=false"
     MPI ${ranks} COMPARE slice-0001.csv NUMDIFF -a 1e-11 -r 0 LABELS mpi)
@@ -56,11 +56,11 @@ endforeach()
 # seeds the incoming field, below 1e-4 (measured 4.7e-5; the old end
 # reflected the pulse as a tension wave of -0.39, four times its amplitude).
 foreach(p 1 2 3)
-  granular_dg_test(layered/outflow_pulse_p${p} PRM layered/outflow_pulse.prm
+  granular_dg_test(layered_strip/outflow_pulse_p${p} PRM layered_strip/outflow_pulse.prm
     ARGS --set Discretization/degree=${p} --set Limiter/scheme=none
     COMPARE summary.json:diagnostics/min_strain,diagnostics/max_strain NUMDIFF -a 1e-14 -r 0)
 endforeach()
-granular_dg_test(layered/outflow_pulse_limited PRM layered/outflow_pulse.prm
+granular_dg_test(layered_strip/outflow_pulse_limited PRM layered_strip/outflow_pulse.prm
   ARGS --set Discretization/degree=2 --set Limiter/scheme=flux_variables
   COMPARE summary.json:diagnostics/min_strain,diagnostics/max_strain NUMDIFF -a 1e-4 -r 0)
 # Case (b) to t = 420: the wave train leaves through x = 300 (t ~ 330-400)
@@ -71,7 +71,7 @@ granular_dg_test(layered/outflow_pulse_limited PRM layered/outflow_pulse.prm
 # (0.576 of 6.718 at t = 420 as shipped, with the indicator; the limiter in
 # every cell dissipated 0.7 % more of the train and gave 0.568 of 6.674;
 # relative 1e-3).
-granular_dg_test(layered/outflow_train PRM ../prm/layered_1d.prm
+granular_dg_test(layered_strip/outflow_train PRM ../prm/layered_1d.prm
   ARGS --set "Time stepping/final time=420" --set "Output/output times=330"
        --set "Output/write vtu=false"
   COMPARE timeseries.csv:time,energy NUMDIFF -r 1e-3 LABELS slow)
@@ -80,30 +80,30 @@ granular_dg_test(layered/outflow_train PRM ../prm/layered_1d.prm
 # and keeps the unlimited scheme's accuracy on the smooth wave train
 # (L1 strain error at t = 240 0.0018 against the P3 reference, target 0.03;
 # 0.128 with the limiter in every cell): within 0.003 of the unlimited run,
-# which the limiter in every cell is not (tests/layered/indicator_accuracy.py).
-granular_dg_test(layered/indicator_accuracy EXE ${TEST_PYTHON}
-  ARGS ${CMAKE_CURRENT_SOURCE_DIR}/layered/indicator_accuracy.py $<TARGET_FILE:granular_dg>
+# which the limiter in every cell is not (tests/layered_strip/indicator_accuracy.py).
+granular_dg_test(layered_strip/indicator_accuracy EXE ${TEST_PYTHON}
+  ARGS ${CMAKE_CURRENT_SOURCE_DIR}/layered_strip/indicator_accuracy.py $<TARGET_FILE:granular_dg>
        ${CMAKE_CURRENT_SOURCE_DIR}/../prm/layered_1d.prm
   COMPARE stdout KEEP_OUTPUT NUMDIFF -a 0 -r 0)
 
 # Leaving out the cells at rest (Time stepping/skip cells at rest) changes no
-# result (tests/layered/rest_agrees.py): at rest tolerance 0 the CSV files and
+# result (tests/layered_strip/rest_agrees.py): at rest tolerance 0 the CSV files and
 # summary.json's diagnostics are byte for byte those of the full computation;
 # at 1e-14 every column agrees to 1e-10 of its scale. rest_wall_switch.prm: a
 # strip at rest whose wall starts to move at t = 10 (the cells on a boundary
 # with data are always computed); the coarse 2D strip (100 x 10 P3 to t = 20)
 # of the comparison with Clawpack. The stored fraction of cell updates left out
 # (2 digits, exact) fails the test when the skipping stops paying.
-set(rest_agrees ${CMAKE_CURRENT_SOURCE_DIR}/layered/rest_agrees.py)
-granular_dg_test(layered/rest_exact_wall_switch EXE ${TEST_PYTHON}
-  ARGS ${rest_agrees} $<TARGET_FILE:granular_dg> ${CMAKE_CURRENT_SOURCE_DIR}/layered/rest_wall_switch.prm
+set(rest_agrees ${CMAKE_CURRENT_SOURCE_DIR}/layered_strip/rest_agrees.py)
+granular_dg_test(layered_strip/rest_exact_wall_switch EXE ${TEST_PYTHON}
+  ARGS ${rest_agrees} $<TARGET_FILE:granular_dg> ${CMAKE_CURRENT_SOURCE_DIR}/layered_strip/rest_wall_switch.prm
        --bitwise
   COMPARE stdout KEEP_OUTPUT NUMDIFF -a 0 -r 0)
-granular_dg_test(layered/rest_agrees_wall_switch EXE ${TEST_PYTHON}
-  ARGS ${rest_agrees} $<TARGET_FILE:granular_dg> ${CMAKE_CURRENT_SOURCE_DIR}/layered/rest_wall_switch.prm
+granular_dg_test(layered_strip/rest_agrees_wall_switch EXE ${TEST_PYTHON}
+  ARGS ${rest_agrees} $<TARGET_FILE:granular_dg> ${CMAKE_CURRENT_SOURCE_DIR}/layered_strip/rest_wall_switch.prm
        --tolerance 1e-10 --skip 1e-14
   COMPARE stdout KEEP_OUTPUT NUMDIFF -a 0 -r 0)
-granular_dg_test(layered/rest_agrees_strip EXE ${TEST_PYTHON}
+granular_dg_test(layered_strip/rest_agrees_strip EXE ${TEST_PYTHON}
   ARGS ${rest_agrees} $<TARGET_FILE:granular_dg> ${CMAKE_CURRENT_SOURCE_DIR}/../prm/layered_2d.prm
        --tolerance 1e-10 --skip 1e-14 --set "Mesh/cells x=100" --set "Mesh/cells y=10"
        --set Discretization/degree=3 --set "Time stepping/CFL number=0.1"
