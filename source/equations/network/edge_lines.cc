@@ -376,18 +376,24 @@ namespace granular_dg::network
   EdgeLines::max_speed_over_h(const double *u) const
   {
     return dg::with_n_modes(modes, [&](auto nm) {
+      // (the largest over the lanes once at the end: max is exact in any order)
+      VA     lanes  = 0.;
       double result = 0;
       for (unsigned int e = 0; e < n_edges(); ++e)
-        result = std::max(result, max_speed_edge<decltype(nm)::value>(u, e));
+        max_speed_edge<decltype(nm)::value>(u, e, lanes, result);
+      for (unsigned int l = 0; l < W; ++l)
+        result = std::max(result, lanes[l]);
       return result;
     });
   }
 
   /// dg::LineOperator::max_speed_impl() on edge e: the largest speed of a
-  /// cell divided once by h, in SIMD batches of cells
+  /// cell divided once by h, in SIMD batches of cells (into lanes) and cell
+  /// by cell for the rest (into result)
   template <unsigned int nm>
-  double
-  EdgeLines::max_speed_edge(const double *src, const unsigned int e) const
+  void
+  EdgeLines::max_speed_edge(const double *src, const unsigned int e, VA &lanes,
+                            double &result) const
   {
     const FluxFunction f = laws[e];
     const auto         cell_value = [&](const auto *u, const auto &h_c) {
@@ -400,21 +406,15 @@ namespace granular_dg::network
                                                Number(0.)));
       return cell_max / h_c;
     };
-    // (the largest over the lanes once per edge: max is exact in any order)
-    VA           lanes  = 0.;
-    unsigned int c      = 0;
+    unsigned int c = 0;
     for (; W > 1 && c + W <= cells[e]; c += W)
       {
         VA u[nm];
         load_cells<nm>(src + index(e, c), u);
         lanes = std::max(lanes, cell_value(u, VA(h[e])));
       }
-    double result = 0;
-    for (unsigned int l = 0; l < W; ++l)
-      result = std::max(result, lanes[l]);
     for (; c < cells[e]; ++c)
       result = std::max(result, cell_value(src + index(e, c), h[e]));
-    return result;
   }
 
   // ---------------------------------------------------------------- the limiter

@@ -208,6 +208,11 @@ namespace granular_dg::network
           }
         vertex_ends.first.push_back(vertex_ends.source.size());
       }
+    for (const unsigned int v : ranks->vertices())
+      for (const auto &end : junctions[v].ends())
+        if (const unsigned int k = end.edge; ranks->owns_edge(k))
+          owned_ends.push_back(
+            {v, local(k), edge_h[k], lines->index(local(k), end.incoming ? edge_cells[k] - 1 : 0)});
     exchanged.assign(ranks->n_slots(), 0.);
     u.vertices.assign(net.vertices.size(), 0.);
     vertex_u0.assign(net.vertices.size(), 0.);
@@ -627,12 +632,9 @@ namespace granular_dg::network
   NetworkProblem::time_step(const double time)
   {
     double speed_over_h = lines->max_speed_over_h(u.edges.data());
-    for (const unsigned int v : ranks->vertices())
-      for (std::size_t i = vertex_ends.first[v]; i < vertex_ends.first[v + 1]; ++i)
-        if (const unsigned int k = vertex_ends.edge[i]; ranks->owns_edge(k))
-          speed_over_h = std::max(speed_over_h,
-                                  std::abs(lines->flux(local(k)).derivative(u.vertices[v])) /
-                                    edge_h[k]);
+    for (const auto &end : owned_ends)
+      speed_over_h = std::max(
+        speed_over_h, std::abs(lines->flux(end.edge).derivative(u.vertices[end.vertex])) / end.h);
     const double dt = method.cfl / ranks->max(speed_over_h);
     if (!(std::isfinite(dt) && dt > 0))
       throw RunError("time step is " + format_number(dt) + " at t = " + format_number(time) +
@@ -732,13 +734,8 @@ namespace granular_dg::network
         for (unsigned int c = 0; c + 1 < edge_cells[k]; ++c)
           tv += std::abs(mean[(c + 1) * n] - mean[c * n]);
       }
-    for (const unsigned int v : ranks->vertices())
-      for (const auto &end : junctions[v].ends())
-        if (ranks->owns_edge(end.edge))
-          {
-            const unsigned int c = end.incoming ? edge_cells[end.edge] - 1 : 0;
-            tv += std::abs(u.vertices[v] - u.edges[lines->index(local(end.edge), c)]);
-          }
+    for (const auto &end : owned_ends)
+      tv += std::abs(u.vertices[end.vertex] - u.edges[end.cell]);
     return {{m, tv}};
   }
 

@@ -344,6 +344,17 @@ namespace granular_dg::network
       std::vector<unsigned char> at_end;
       std::vector<unsigned int>  edge;
     } vertex_ends;
+    /// the ends of this rank's vertices on this rank's edges, in the order
+    /// of ranks->vertices() and Junction::ends() (one flat pass for the time
+    /// step and the total variation): the vertex, the local edge, its cell
+    /// size and the array index of mode 0 of the end cell
+    struct OwnedEnd
+    {
+      unsigned int vertex, edge;
+      double       h;
+      std::size_t  cell;
+    };
+    std::vector<OwnedEnd> owned_ends;
     std::vector<Junction>                            junctions;
     /// the value the edges see at each vertex in the current stage
     mutable std::vector<double>                      vertex_u0;
