@@ -203,7 +203,7 @@ namespace granular_dg::dg
     apply(const double t, const VectorType &src, VectorType &dst) const override
     {
       dispatch([&](auto nm) {
-        apply_impl<decltype(nm)::value>(t, src.begin(), [d = dst.begin()](const std::size_t i, const double rate) { d[i] = rate; });
+        apply_impl<decltype(nm)::value>(t, src.begin(), RateWriter{dst.begin()});
       });
     }
 
@@ -224,13 +224,9 @@ namespace granular_dg::dg
         constexpr unsigned int n = decltype(nm)::value;
         // the branch on s.old outside the cell loop
         if (s.old)
-          apply_impl<n>(t, u, [&, old = s.old->begin()](const std::size_t i, const double rate) {
-            out[i] = stage_value(s.alpha, s.beta, s.gamma, u[i], old[i], rate);
-          });
+          apply_impl<n>(t, u, StageWriter<true>{u, s.old->begin(), out, s.alpha, s.beta, s.gamma});
         else
-          apply_impl<n>(t, u, [&](const std::size_t i, const double rate) {
-            out[i] = stage_value(s.gamma, u[i], rate);
-          });
+          apply_impl<n>(t, u, StageWriter<false>{u, nullptr, out, s.alpha, s.beta, s.gamma});
       });
     }
 
@@ -288,6 +284,22 @@ namespace granular_dg::dg
   private:
     static constexpr unsigned int max_modes = 5;
     using VA                                = VectorizedArray<double>;
+
+    /// apply_impl()'s writer of plain rates (apply()): dst[i] = rate
+    struct RateWriter
+    {
+      double *dst;
+      void
+      operator()(const std::size_t i, const double rate) const
+      {
+        dst[i] = rate;
+      }
+      void
+      batch(const std::size_t i, const double *rates, const unsigned int n) const
+      {
+        std::copy(rates, rates + n, dst + i);
+      }
+    };
     /// cells per SIMD batch of apply_range() (the native width of the SIMD
     /// build, 1 without it)
     static constexpr unsigned int batch_width = VA::size();
@@ -737,8 +749,7 @@ namespace granular_dg::dg
         offsets[l] = l * dpc;
       double rates[W * dpc];
       vectorized_transpose_and_store(false, dpc, rate, offsets, rates);
-      for (unsigned int j = 0; j < W * dpc; ++j)
-        out(c * dpc + j, rates[j]);
+      out.batch(c * dpc, rates, W * dpc);
     }
 
     /// The tables of subcell blending for the degree (if it is on).

@@ -1,6 +1,7 @@
 #pragma once
 
 #include <deal.II/base/time_stepping.h>
+#include <deal.II/base/vectorization.h>
 #include <deal.II/lac/la_parallel_vector.h>
 
 #include <functional>
@@ -61,6 +62,92 @@ namespace granular_dg::dg
   {
     return src + rounded_product(gamma, rate);
   }
+
+  /// rounded_product() of a SIMD batch: each lane's product rounded on its
+  /// own, as the scalar one (the stage updates below then give the scalar
+  /// updates' values lane by lane).
+  template <typename Number, std::size_t width>
+  inline dealii::VectorizedArray<Number, width>
+  rounded_product(const dealii::VectorizedArray<Number, width> &a,
+                  const dealii::VectorizedArray<Number, width> &b)
+  {
+    dealii::VectorizedArray<Number, width> p = a * b;
+#if defined(__GNUC__) && (defined(__x86_64__) || defined(__i386__))
+    asm("" : "+v"(p.data));
+#else
+    for (unsigned int l = 0; l < width; ++l)
+      p[l] = rounded_product(a[l], b[l]);
+#endif
+    return p;
+  }
+
+  /// stage_value() of a SIMD batch of values.
+  template <typename Number, std::size_t width>
+  inline dealii::VectorizedArray<Number, width>
+  stage_value(const dealii::VectorizedArray<Number, width> &alpha,
+              const dealii::VectorizedArray<Number, width> &beta,
+              const dealii::VectorizedArray<Number, width> &gamma,
+              const dealii::VectorizedArray<Number, width> &src,
+              const dealii::VectorizedArray<Number, width> &old,
+              const dealii::VectorizedArray<Number, width> &rate)
+  {
+    return (rounded_product(alpha, src) + rounded_product(beta, old)) +
+           rounded_product(gamma, rate);
+  }
+
+  /// stage_value() without old of a SIMD batch of values.
+  template <typename Number, std::size_t width>
+  inline dealii::VectorizedArray<Number, width>
+  stage_value(const dealii::VectorizedArray<Number, width> &gamma,
+              const dealii::VectorizedArray<Number, width> &src,
+              const dealii::VectorizedArray<Number, width> &rate)
+  {
+    return src + rounded_product(gamma, rate);
+  }
+
+  /**
+   * Where an operator's cell loop puts the rates of a fused stage: dst[i] =
+   * stage_value(..., src[i], old[i], rate) for one value, batch(i, rates, n)
+   * for the n values from index i at once (n a multiple of the SIMD width),
+   * the same values lane by lane. with_old: a StageUpdate with s.old.
+   */
+  template <bool with_old>
+  struct StageWriter
+  {
+    const double *src, *old;
+    double       *dst;
+    double        alpha, beta, gamma;
+
+    void
+    operator()(const std::size_t i, const double rate) const
+    {
+      if constexpr (with_old)
+        dst[i] = stage_value(alpha, beta, gamma, src[i], old[i], rate);
+      else
+        dst[i] = stage_value(gamma, src[i], rate);
+    }
+
+    void
+    batch(const std::size_t i, const double *rates, const unsigned int n) const
+    {
+      using VA = dealii::VectorizedArray<double>;
+      const VA a = alpha, b = beta, g = gamma;
+      for (unsigned int j = 0; j < n; j += VA::size())
+        {
+          VA u, r;
+          u.load(src + i + j);
+          r.load(rates + j);
+          if constexpr (with_old)
+            {
+              VA o;
+              o.load(old + i + j);
+              stage_value(a, b, g, u, o, r).store(dst + i + j);
+            }
+          else
+            stage_value(g, u, r).store(dst + i + j);
+        }
+    }
+  };
 
   /// The update of StageUpdate for one value (src, old: the values at the
   /// same index; old unused without s.old).

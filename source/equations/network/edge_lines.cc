@@ -160,20 +160,17 @@ namespace granular_dg::network
       // the branch on old outside the cell loops
       if (old)
         for (unsigned int e = 0; e < n_edges(); ++e)
-          rate_edge<n>(src, e, [&](const std::size_t i, const double rate) {
-            dst[i] = dg::stage_value(a, b, gamma, src[i], old[i], rate);
-          });
+          rate_edge<n>(src, e, dg::StageWriter<true>{src, old, dst, a, b, gamma});
       else
         for (unsigned int e = 0; e < n_edges(); ++e)
-          rate_edge<n>(src, e, [&](const std::size_t i, const double rate) {
-            dst[i] = dg::stage_value(gamma, src[i], rate);
-          });
+          rate_edge<n>(src, e, dg::StageWriter<false>{src, old, dst, a, b, gamma});
     });
   }
 
   /// dg::LineOperator::apply_range() on the cells of edge e: out(i, r) for
-  /// every array index i of the edge and its rate r, a cell's entries after
-  /// all reads of it and of its left neighbour (out may overwrite src).
+  /// every array index i of the edge and its rate r (out.batch() for the
+  /// values of a SIMD batch), a cell's entries after all reads of it and of
+  /// its left neighbour (out may overwrite src).
   template <unsigned int nm, typename Out>
   void
   EdgeLines::rate_edge(const double *src, const unsigned int e, const Out &out) const
@@ -298,8 +295,7 @@ namespace granular_dg::network
       rate[k] = (res[k] - F_right * at_1[k] + F_left_va * at_0[k]) * inv_h;
     double rates[W * nm];
     store_cells<nm>(rate, rates);
-    for (unsigned int j = 0; j < W * nm; ++j)
-      out(index(e, c) + j, rates[j]);
+    out.batch(index(e, c), rates, W * nm);
   }
 
   /// dg::LineOperator::subcell_rate(): the first-order finite-volume rate

@@ -185,8 +185,12 @@ namespace granular_dg::network
         if (net.edges[k].vertex_at(side))
           vertex_faces.emplace_back(2 * local(k) + side,
                                     side == 0 ? net.edges[k].from : net.edges[k].to);
-        else if (net.edges[k].far_end == FarEnd::dirichlet)
-          data_faces.emplace_back(k, side);
+        else
+          {
+            free_faces.emplace_back(k, side);
+            if (net.edges[k].far_end == FarEnd::dirichlet)
+              data_faces.emplace_back(k, side);
+          }
     // where the trace of each end of this rank's vertices comes from (a
     // vertex not cut has all its edges here)
     std::vector<bool> here(net.vertices.size(), false);
@@ -426,23 +430,16 @@ namespace granular_dg::network
   NetworkProblem::far_end_inflow(const NetworkState &s) const
   {
     double sum = 0;
-    for (const unsigned int k : ranks->edges())
+    for (const auto &[k, side] : free_faces)
       {
-        const Edge &e = net.edges[k];
-        // the free end x = 0 (inflow side) and x = L (outflow side)
-        for (const bool in : {true, false})
-          {
-            if ((in ? e.from : e.to) != free_end)
-              continue;
-            // the far-end data as the edge's end face sees it (set_end_states())
-            const unsigned int side   = in ? 0 : 1;
-            const double       inside = trace(k, side, s);
-            const double       ghost  = e.far_end == FarEnd::dirichlet ?
-                                          lines->outer_state(local(k), side) :
-                                          inside;
-            sum += in ? e.flux.numerical_flux(options.flux, ghost, inside) :
-                        -e.flux.numerical_flux(options.flux, inside, ghost);
-          }
+        // the far-end data as the edge's end face sees it (set_end_states()):
+        // inflow at x = 0, outflow at x = L
+        const Edge  &e      = net.edges[k];
+        const double inside = trace(k, side, s);
+        const double ghost =
+          e.far_end == FarEnd::dirichlet ? lines->outer_state(local(k), side) : inside;
+        sum += side == 0 ? e.flux.numerical_flux(options.flux, ghost, inside) :
+                           -e.flux.numerical_flux(options.flux, inside, ghost);
       }
     return sum;
   }

@@ -330,8 +330,9 @@ namespace granular_dg::network
     mutable std::optional<std::string>               pending_error;
     mutable std::vector<double>                      trace_buffer;
     /// the end faces of this rank's edges (2 local edge + side) at each
-    /// vertex, and the (edge, side) of the far ends with Dirichlet data
-    std::vector<std::pair<unsigned int, unsigned int>> vertex_faces, data_faces;
+    /// vertex, the (edge, side) of the free ends and of those among them
+    /// with Dirichlet data
+    std::vector<std::pair<unsigned int, unsigned int>> vertex_faces, free_faces, data_faces;
     /// the ends of each vertex (CSR: those of v are first[v] .. first[v +
     /// 1] - 1, in Junction::ends() order): the array index of the cell
     /// whose trace it takes (source >= 0), or -1 - its slot in exchanged
