@@ -202,21 +202,19 @@ namespace granular_dg::network
         const auto &ends = junctions[v].ends();
         for (unsigned int i = 0; here[v] && i < ends.size(); ++i)
           {
-            const int          slot = ranks->slot(v, i);
-            const unsigned int k    = ends[i].edge;
-            vertex_ends.source.push_back(
-              slot >= 0 ? -1 - long(slot) :
-                          long(lines->index(local(k), ends[i].incoming ? edge_cells[k] - 1 : 0)));
+            // (an end without a slot is on an edge of this rank)
+            const int          slot  = ranks->slot(v, i);
+            const unsigned int k     = ends[i].edge;
+            const bool         owned = ranks->owns_edge(k);
+            const std::size_t  cell =
+              owned ? lines->index(local(k), ends[i].incoming ? edge_cells[k] - 1 : 0) : 0;
+            vertex_ends.source.push_back(slot >= 0 ? -1 - long(slot) : long(cell));
             vertex_ends.at_end.push_back(ends[i].incoming);
-            vertex_ends.edge.push_back(k);
+            if (owned)
+              owned_ends.push_back({v, local(k), edge_h[k], cell});
           }
         vertex_ends.first.push_back(vertex_ends.source.size());
       }
-    for (const unsigned int v : ranks->vertices())
-      for (const auto &end : junctions[v].ends())
-        if (const unsigned int k = end.edge; ranks->owns_edge(k))
-          owned_ends.push_back(
-            {v, local(k), edge_h[k], lines->index(local(k), end.incoming ? edge_cells[k] - 1 : 0)});
     exchanged.assign(ranks->n_slots(), 0.);
     u.vertices.assign(net.vertices.size(), 0.);
     vertex_u0.assign(net.vertices.size(), 0.);

@@ -336,19 +336,17 @@ namespace granular_dg::network
     /// the ends of each vertex (CSR: those of v are first[v] .. first[v +
     /// 1] - 1, in Junction::ends() order): the array index of the cell
     /// whose trace it takes (source >= 0), or -1 - its slot in exchanged
-    /// (a vertex shared with other ranks); at_end: the trace at x = L;
-    /// edge: the end's edge
+    /// (a vertex shared with other ranks); at_end: the trace at x = L
     struct VertexEnds
     {
       std::vector<std::size_t>   first;
       std::vector<long>          source;
       std::vector<unsigned char> at_end;
-      std::vector<unsigned int>  edge;
     } vertex_ends;
     /// the ends of this rank's vertices on this rank's edges, in the order
-    /// of ranks->vertices() and Junction::ends() (one flat pass for the time
-    /// step and the total variation): the vertex, the local edge, its cell
-    /// size and the array index of mode 0 of the end cell
+    /// of vertex_ends (one flat pass for the time step and the total
+    /// variation): the vertex, the local edge, its cell size and the array
+    /// index of mode 0 of the end cell
     struct OwnedEnd
     {
       unsigned int vertex, edge;
