@@ -471,6 +471,11 @@ namespace granular_dg::network
   {
     for (const auto &[face, v] : vertex_faces)
       lines->outer_state(face / 2, face % 2) = vertex_u0[v];
+    // the far-end data depend on the time only (a step's last stage and the
+    // next step's first one share theirs)
+    if (time == data_time)
+      return;
+    data_time = time;
     for (const auto &[k, side] : data_faces)
       {
         data[k].far_end->set_time(time);
@@ -507,17 +512,14 @@ namespace granular_dg::network
     const auto [lo_edges, hi_edges] = value_range(u.edges);
     lo = std::min(lo, lo_edges);
     hi = std::max(hi, hi_edges);
-    for (const unsigned int k : ranks->edges())
-      for (const bool start : {true, false})
-        if ((start ? net.edges[k].from : net.edges[k].to) == free_end &&
-            net.edges[k].far_end == FarEnd::dirichlet)
-          for (const double s : {time, time + 0.5 * dt, time + dt})
-            {
-              data[k].far_end->set_time(s);
-              const double g = data[k].far_end->value(Point<1>(start ? 0. : net.edges[k].length));
-              lo = std::min(lo, g);
-              hi = std::max(hi, g);
-            }
+    for (const auto &[k, side] : data_faces)
+      for (const double s : {time, time + 0.5 * dt, time + dt})
+        {
+          data[k].far_end->set_time(s);
+          const double g = data[k].far_end->value(Point<1>(side == 0 ? 0. : net.edges[k].length));
+          lo = std::min(lo, g);
+          hi = std::max(hi, g);
+        }
     return {ranks->min(lo), ranks->max(hi)};
   }
 

@@ -357,6 +357,8 @@ namespace granular_dg::network
     std::vector<Junction>                            junctions;
     /// the value the edges see at each vertex in the current stage
     mutable std::vector<double>                      vertex_u0;
+    /// the time of the far-end data in the edges' outer states
+    mutable double                                   data_time = NAN;
     NetworkState               u, last_good, benchmark_start;
     dg::SSPRK3<NetworkState>   rk3;
     /// inflow: this rank's far ends
