@@ -86,46 +86,4 @@ namespace granular_dg
     else
       prm.declare_entry(name, default_text, pattern, documentation);
   }
-
-  template <>
-  bool
-  ParameterBinding::read<bool>(const std::string &name) const
-  {
-    return prm.get_bool(name);
-  }
-
-  template <>
-  double
-  ParameterBinding::read<double>(const std::string &name) const
-  {
-    return prm.get_double(name);
-  }
-
-  template <>
-  std::string
-  ParameterBinding::read<std::string>(const std::string &name) const
-  {
-    return prm.get(name);
-  }
-
-  template <>
-  int
-  ParameterBinding::read<int>(const std::string &name) const
-  {
-    return prm.get_integer(name);
-  }
-
-  template <>
-  unsigned int
-  ParameterBinding::read<unsigned int>(const std::string &name) const
-  {
-    return prm.get_integer(name);
-  }
-
-  template <>
-  unsigned long
-  ParameterBinding::read<unsigned long>(const std::string &name) const
-  {
-    return prm.get_integer(name);
-  }
 } // namespace granular_dg

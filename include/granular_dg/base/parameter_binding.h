@@ -140,9 +140,20 @@ namespace granular_dg
     set_default(const std::string &entry_path, const std::string &value);
 
   private:
+    /// The entry's value as T (bool, an integer type, double, std::string).
     template <typename T>
     T
-    read(const std::string &name) const;
+    read(const std::string &name) const
+    {
+      if constexpr (std::is_same_v<T, bool>)
+        return prm.get_bool(name);
+      else if constexpr (std::is_integral_v<T>)
+        return prm.get_integer(name);
+      else if constexpr (std::is_floating_point_v<T>)
+        return prm.get_double(name);
+      else
+        return prm.get(name);
+    }
 
     void
     leave();
@@ -152,24 +163,4 @@ namespace granular_dg
     unsigned int      depth = 0;
     std::string       current;
   };
-
-  // ParameterBinding::read<T>(), defined in parameter_binding.cc
-  template <>
-  bool
-  ParameterBinding::read<bool>(const std::string &) const;
-  template <>
-  int
-  ParameterBinding::read<int>(const std::string &) const;
-  template <>
-  unsigned int
-  ParameterBinding::read<unsigned int>(const std::string &) const;
-  template <>
-  unsigned long
-  ParameterBinding::read<unsigned long>(const std::string &) const;
-  template <>
-  double
-  ParameterBinding::read<double>(const std::string &) const;
-  template <>
-  std::string
-  ParameterBinding::read<std::string>(const std::string &) const;
 } // namespace granular_dg
