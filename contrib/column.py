@@ -8,11 +8,9 @@ doc/column.md (RUN: a run's output directory, RUN:label names it):
   column.py naive OUT.png RUN:label ...           the probe strain and max_z v of each run;
   column.py indicators BUILD OUT                  "Shock capturing": OUT/column-indicator-scan.csv
                                                   and a markdown table;
-  column.py late-time BUILD OUT [--final-time T]  "Late times": OUT/late-time.csv;
-  column.py work-precision BUILD OUT [--cells 25,50,...]
-      "Work-precision": OUT/work-precision.{csv,png} (each degree's convergence.csv).
+  column.py late-time BUILD OUT [--final-time T]  "Late times": OUT/late-time.csv.
 
-The studies reuse the runs that completed before (but work-precision's).
+The studies reuse the runs that completed before.
 """
 import os
 
@@ -20,7 +18,7 @@ import numpy as np
 
 from granular_dg import main, outputs, plot
 from granular_dg.compare import value_at
-from granular_dg.run import Runs, run_case
+from granular_dg.run import Runs
 
 STYLES = ["-", "--", ":", "-."]
 
@@ -156,22 +154,6 @@ def late_time(a):
     runs.csv("late-time", rows)
 
 
-def work_precision(a):
-    cfl = ",".join("%g" % (0.9 / (2 * p + 1)) for p in range(4))
-    r = run_case(a.build, "tests/column/m1_base.prm", os.path.join(a.out, "run"), [
-        "Output/output times=", "Convergence/enabled=true", "Convergence/degrees=0,1,2,3",
-        "Convergence/cells=" + a.cells, "Convergence/CFL numbers=" + cfl], check=True)
-    t = outputs.convergence(r.directory)
-    with open(t.path) as f, open(os.path.join(a.out, "work-precision.csv"), "w") as g:
-        g.writelines(l for l in f if not l.startswith("#"))  # the rows as the program wrote them
-    fig, ax = plot.subplots(figsize=(6.5, 4.5))
-    for degree, d in t.groups("degree").items():
-        ax.loglog(d["time_loop_cpu_s"], d["l1_error"], "o-", label="P%d" % degree)
-    plot.label(ax, "CPU time of the time loop [s]", "L1 error (u and v) at t = 4",
-               "column, m = 1: error against the exact solution", legend=10)
-    plot.save(fig, os.path.join(a.out, "work-precision.png"))
-
-
 if __name__ == "__main__":
     main(__doc__, {
         "figure": (figure, ["run", "out", ("--title", dict(default="")), ("--zmax", dict(type=float, default=0)),
@@ -179,5 +161,4 @@ if __name__ == "__main__":
                             ("--compare", dict(nargs="*", default=[]))]),
         "naive": (naive, ["out", ("runs", dict(nargs="+"))]),
         "indicators": (indicators, ["build", "out"]),
-        "late-time": (late_time, ["build", "out", ("--final-time", dict(type=float, default=1000))]),
-        "work-precision": (work_precision, ["build", "out", ("--cells", dict(default="25,50,100,200,400,800,1600"))])})
+        "late-time": (late_time, ["build", "out", ("--final-time", dict(type=float, default=1000))])})

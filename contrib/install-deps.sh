@@ -18,6 +18,7 @@ packages=(
 test_packages=(
   numdiff                 # regression-test comparison
   python3-matplotlib python3-numpy  # figures in doc/ (run with /usr/bin/python3)
+  python3-scipy           # the hopper's independent radial-field reference (tests/hopper)
   libdeal.ii-doc          # deal.II's examples: step-67, the throughput comparator of contrib/benchmark.py
   paraview python3-paraview xvfb  # pvpython: a real-client test of the VTU/PVD output
 )

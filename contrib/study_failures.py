@@ -18,7 +18,7 @@ from granular_dg.run import tag
 
 NAN = float("nan")
 # SSP-RK3 with upwind DG of degree p on u_t + u_x = 0: the linear stability
-# limit of nu = a dt/h (Fourier analysis, contrib/dg_cfl_limits.py)
+# limit of nu = a dt/h (Fourier analysis: tests/unit/rk_stability_limits.cc computes them)
 LINEAR_RK3 = {0: 1.256373, 1: 0.409590, 2: 0.209754, 3: 0.130094, 4: 0.089687}
 LAYERS = 60            # layers of width 1 on [0, 60]
 LAYERED_T = 50         # the front is at x ~ 45 then: the outflow end is not reached

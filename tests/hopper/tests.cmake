@@ -15,9 +15,13 @@ granular_dg_unit_test(hopper/hopper_linear_stability NUMDIFF -a 5e-3 -r 0)
 
 # The radial (Jenike) fields of the 30 deg wedge and cone, 61 points of
 # radial-field.csv, against an independent SciPy solution (DOP853 shooting,
-# contrib/hopper_radial_reference.py wrote the .output files):
+# tests/hopper/radial_reference.py wrote the .output files):
 # relative 1e-8 (absolute 1e-12 for the zeros at the axis).
 foreach(g wedge cone)
+  # the stored fields are what the SciPy solution computes today (1e-12)
+  granular_dg_test(hopper/radial_${g}_reference EXE ${TEST_PYTHON}
+    ARGS ${CMAKE_CURRENT_SOURCE_DIR}/hopper/radial_reference.py ${g} 30 61
+    KEEP_OUTPUT COMPARE stdout EXPECTED hopper/radial_${g}.output NUMDIFF -a 1e-14 -r 1e-12)
   granular_dg_test(hopper/radial_${g} PRM ../prm/hopper_radial_field.prm
     ARGS --set Hopper/geometry=${g}
     COMPARE radial-field.csv:theta,sigma,psi,T_rr,T_rtheta,T_thetatheta,T_phiphi

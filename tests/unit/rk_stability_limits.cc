@@ -4,7 +4,7 @@
 // (dg::cfl_limit). Fourier analysis of u_t + u_x = 0: on one cell of the
 // reference size 2 the semi-discrete operator of the mode exp(i j theta) is
 // S(theta) = diag(2k+1) (D - 1 1^T + exp(-i theta) s 1^T) with
-// D_km = (P_m, P_k') and s_k = (-1)^k (contrib/dg_cfl_limits.py); the step
+// D_km = (P_m, P_k') and s_k = (-1)^k; the step
 // multiplies an eigenvector by R(nu z), z an eigenvalue of S, R the
 // scheme's stability function: one step of the scheme (dg::SSPRK3 or
 // dg::LowStorageRK with deal.II's coefficients) applied to y' = z y. The limit

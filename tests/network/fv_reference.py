@@ -12,7 +12,7 @@ over the current state (edges and vertex), the last step landing on T,
 cell averages of the initial data, the vertex starting at c_0. Error: the
 true L1 norm over all edges and the vertex cell at T.
 
-  /usr/bin/python3 contrib/network_fv_reference.py [--levels 3-8] [--examples 7.1,7.3] [--csv DIR]
+  /usr/bin/python3 tests/network/fv_reference.py [--levels 3-8] [--examples 7.1,7.3] [--csv DIR]
 """
 import math
 import os
@@ -20,7 +20,7 @@ import types
 
 import numpy as np
 
-from granular_dg import arguments
+import argparse
 
 SQRT2 = math.sqrt(2.0)
 
@@ -192,9 +192,14 @@ def solve(ex, level):
 
 
 def main():
-    a = arguments(__doc__, [('--levels', dict(default='3-8')), ('--examples', dict(default='7.1,7.2,7.3,7.4,7.5')),
-                            ('--csv', dict(help='write DIR/example_7_X_table.output (the test references)'))])
+    parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    parser.add_argument('--levels', default='3-8')
+    parser.add_argument('--examples', default='7.1,7.2,7.3,7.4,7.5')
+    parser.add_argument('--csv', help='write DIR/example_7_X_table.output (the test references)')
+    a = parser.parse_args()
     lo, hi = (int(v) for v in a.levels.split('-'))
+    if a.csv:
+        os.makedirs(a.csv, exist_ok=True)
     for name in a.examples.split(','):
         ex = EXAMPLES[name]()
         rows, prev = [], None

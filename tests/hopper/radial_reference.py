@@ -9,7 +9,7 @@ per unit rho g r) at the points of radial-field.csv. It shares no code with
 source/equations/hopper/radial_field.cc (Boost.odeint Dormand-Prince
 5(4) and TOMS 748).
 
-  /usr/bin/python3 contrib/hopper_radial_reference.py cone 30 61 > tests/hopper/radial_cone.output
+  /usr/bin/python3 tests/hopper/radial_reference.py cone 30 61 > tests/hopper/radial_cone.output
 """
 import sys
 import numpy as np
