@@ -99,7 +99,8 @@ def stress(directory):
 
 
 def wake(a):
-    ref, rows = stress(a.reference), []
+    ref_dir, ref_name = plot.split_run(a.reference)
+    ref, rows = stress(ref_dir), []
     runs = [plot.split_run(r) for r in a.runs]
     for d, name in runs:
         for t, s in sorted(stress(d).items()):
@@ -113,7 +114,7 @@ def wake(a):
     t = max(ref) if a.time is None else a.time
     fig, ax = plot.subplots(figsize=(10, 3.8))
     x, s = ref[t]
-    ax.plot(x[x < WAKE], s[x < WAKE], "k-", lw=2.2, alpha=0.35, label="reference: " + plot.split_run(a.reference)[1])
+    ax.plot(x[x < WAKE], s[x < WAKE], "k-", lw=2.2, alpha=0.35, label="reference: " + ref_name)
     for d, name in runs:
         x, s = stress(d)[t]
         ax.plot(x[x < WAKE], s[x < WAKE], lw=0.9, label=name)
