@@ -8,6 +8,8 @@
 // checks (one SIMD compare at the native width): a special value (NaN, +-inf,
 // +-0, subnormal, DBL_MAX, ...) in one lane and 1 in the others, in every
 // lane, at the native width, 4 and 1, against std::isfinite and > 0.
+// And shift_lanes_up (a lane permute at the native width) against the
+// lane-by-lane shift, at the native width, 4, 2 and 1.
 #include <deal.II/base/vectorization.h>
 
 #include <granular_dg/base/vectorized_math.h>
@@ -76,6 +78,23 @@ namespace
   }
 } // namespace
 
+namespace
+{
+  template <std::size_t width>
+  bool
+  shift_agrees()
+  {
+    VectorizedArray<double, width> x;
+    for (unsigned int l = 0; l < width; ++l)
+      x[l] = 1.5 + l;
+    const auto y  = granular_dg::shift_lanes_up(x, -7.25);
+    bool       ok = y[0] == -7.25;
+    for (unsigned int l = 1; l < width; ++l)
+      ok = ok && y[l] == x[l - 1];
+    return ok;
+  }
+} // namespace
+
 int
 main()
 {
@@ -106,5 +125,8 @@ main()
   const bool lanes = lane_tests_agree<W>() && lane_tests_agree<4>() && lane_tests_agree<1>();
   std::printf("all_finite, all_positive agree with std::isfinite, > 0 in every lane: %s\n",
               lanes ? "yes" : "NO");
-  return wide <= 2. && unit <= 2. && same && special && lanes ? 0 : 1;
+  const bool shift = shift_agrees<W>() && shift_agrees<4>() && shift_agrees<2>() &&
+                     shift_agrees<1>();
+  std::printf("shift_lanes_up moves every lane up by one: %s\n", shift ? "yes" : "NO");
+  return wide <= 2. && unit <= 2. && same && special && lanes && shift ? 0 : 1;
 }

@@ -143,4 +143,38 @@ namespace granular_dg
   {
     return internal::all_lanes_compare_zero<internal::greater_than>(x);
   }
+
+  /// The lanes of x moved up by one, first in lane 0: (first, x[0], ...,
+  /// x[width - 2]). One lane permute where VectorizedArray holds a native
+  /// register (AVX-512, AVX2): the flux through the left faces of a batch of
+  /// cells from the fluxes through their right faces, without the store and
+  /// wide reload that a lane-by-lane copy compiles to (a failed store
+  /// forwarding in every batch of the network's line engine).
+  template <std::size_t width>
+  DEAL_II_ALWAYS_INLINE inline dealii::VectorizedArray<double, width>
+  shift_lanes_up(const dealii::VectorizedArray<double, width> &x, const double first)
+  {
+    dealii::VectorizedArray<double, width> r;
+#if DEAL_II_VECTORIZATION_WIDTH_IN_BITS >= 512 && defined(__AVX512F__)
+    if constexpr (width == 8)
+      {
+        // the concatenation (first broadcast | x) shifted down by 7 lanes
+        r.data = _mm512_castsi512_pd(_mm512_alignr_epi64(
+          _mm512_castpd_si512(x.data), _mm512_castpd_si512(_mm512_set1_pd(first)), 7));
+        return r;
+      }
+#endif
+#if DEAL_II_VECTORIZATION_WIDTH_IN_BITS >= 256 && defined(__AVX2__)
+    if constexpr (width == 4)
+      {
+        // (x[3], x[0], x[1], x[2]), then lane 0 from first
+        r.data = _mm256_blend_pd(_mm256_permute4x64_pd(x.data, 0x93), _mm256_set1_pd(first), 0x1);
+        return r;
+      }
+#endif
+    r[0] = first;
+    for (unsigned int l = 1; l < width; ++l)
+      r[l] = x[l - 1];
+    return r;
+  }
 } // namespace granular_dg

@@ -11,6 +11,7 @@
 #include <deal.II/lac/la_parallel_vector.h>
 
 #include <granular_dg/base/errors.h>
+#include <granular_dg/base/vectorized_math.h>
 #include <granular_dg/dg/boundary.h>
 #include <granular_dg/dg/modal_layout.h>
 #include <granular_dg/dg/operator.h>
@@ -133,11 +134,13 @@ namespace granular_dg::dg
       periodic = layout.neighbor(0, 0) == int(n_cells) - 1;
 
       h.resize(n_cells);
+      inverse_h.resize(n_cells);
       x_left.resize(n_cells);
       coefficients.resize(n_cells);
       for (unsigned int c = 0; c < n_cells; ++c)
         {
           h[c]            = layout.extent(c, 0);
+          inverse_h[c]    = 1. / h[c];
           x_left[c]       = layout.cell(c)->vertex(0)[0];
           coefficients[c] = phys.coefficients(layout.cell(c)->material_id());
         }
@@ -641,7 +644,7 @@ namespace granular_dg::dg
             F_right = boundary_flux(*right_bc, U1, 1., x_left[c] + h[c], t, a);
 
           // - [F* phi_k] over the cell: outward normal +1 on the right, -1 on the left
-          const double inv_h = 1. / h[c];
+          const double inv_h   = inverse_h[c];
           const double blended = blending ? blending_factor(c) : 0.;
           if (blending && blended > 0)
             {
@@ -733,14 +736,13 @@ namespace granular_dg::dg
       State<VA>       F_left_va;
       for (unsigned int i = 0; i < nc; ++i)
         {
-          F_left_va[i][0] = F_left[i];
-          for (unsigned int l = 1; l < W; ++l)
-            F_left_va[i][l] = F_right[i][l - 1];
-          F_left[i] = F_right[i][W - 1];
+          F_left_va[i] = shift_lanes_up(F_right[i], F_left[i]);
+          F_left[i]    = F_right[i][W - 1];
         }
 
-      const VA inv_h = 1. / h_c;
-      VA       rate[dpc];
+      VA inv_h;
+      inv_h.load(&inverse_h[c]);
+      VA rate[dpc];
       for (unsigned int i = 0; i < nc; ++i)
         for (unsigned int k = 0; k < nm; ++k)
           rate[i * nm + k] = (res[i][k] - F_right[i] * at_1[k] + F_left_va[i] * at_0[k]) * inv_h;
@@ -873,7 +875,8 @@ namespace granular_dg::dg
     std::size_t                       n_dofs   = 0;
     bool                              periodic = false, simd_batches = true;
     const BoundaryCondition<1>       *left_bc = nullptr, *right_bc = nullptr;
-    std::vector<double>               h, x_left;
+    /// cell sizes, their inverses (computed once) and left ends
+    std::vector<double>               h, inverse_h, x_left;
     /// Gauss points and weights on [0, 1]; basis[q][k] = L_k(x_q), derivative[q][k] = L_k'(x_q)
     std::array<double, max_points>    weights{}, points{};
     std::array<std::array<double, max_modes>, max_points> basis{}, derivative{};

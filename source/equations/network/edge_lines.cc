@@ -2,6 +2,7 @@
 #include <deal.II/base/quadrature_lib.h>
 #include <deal.II/base/vectorization.h>
 
+#include <granular_dg/base/vectorized_math.h>
 #include <granular_dg/dg/limiter.templates.h>
 #include <granular_dg/dg/modal_layout.h>
 #include <granular_dg/equations/network/edge_lines.h>
@@ -90,6 +91,8 @@ namespace granular_dg::network
     first.assign(1, 0);
     for (const unsigned int n : cells)
       first.push_back(first.back() + n);
+    for (const double size : h)
+      inverse_h.push_back(1. / size);
 
     const QGauss<1> q(modes + 1);
     n_q = q.size();
@@ -208,7 +211,7 @@ namespace granular_dg::network
         if (c != 0)
           traces(c, U0, U1);
       }
-    const double inv_h = 1. / h[e];
+    const double inv_h = inverse_h[e];
     for (; c < n; ++c)
       {
         const double *u       = src + index(e, c);
@@ -263,8 +266,6 @@ namespace granular_dg::network
     VA                     u[nm], v[nm];
     load_cells<nm>(src + index(e, c), u);
     load_cells<nm>(src + index(e, c + 1), v);
-    const VA h_c = h[e];
-
     VA res[nm] = {};
     for (unsigned int q = 0; nm > 1 && q < nq; ++q)
       {
@@ -283,13 +284,10 @@ namespace granular_dg::network
     VA F_right = law.flux(U1, V0);
     if (c + W == cells[e])
       F_right[W - 1] = law.flux(U1[W - 1], outer_of(e, 1, U1[W - 1]));
-    VA F_left_va;
-    F_left_va[0] = F_left;
-    for (unsigned int l = 1; l < W; ++l)
-      F_left_va[l] = F_right[l - 1];
-    F_left = F_right[W - 1];
+    const VA F_left_va = shift_lanes_up(F_right, F_left);
+    F_left             = F_right[W - 1];
 
-    const VA inv_h = 1. / h_c;
+    const VA inv_h = inverse_h[e];
     VA       rate[nm];
     for (unsigned int k = 0; k < nm; ++k)
       rate[k] = (res[k] - F_right * at_1[k] + F_left_va * at_0[k]) * inv_h;

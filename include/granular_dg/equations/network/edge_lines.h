@@ -145,7 +145,7 @@ namespace granular_dg::network
     std::vector<unsigned int> cells;
     /// first[e]: the cells before edge e (first[n_edges]: all)
     std::vector<std::size_t>  first;
-    std::vector<double>       h;
+    std::vector<double>       h, inverse_h;
     std::vector<EndKind>      end_kind;
     std::vector<double>       outer;
     unsigned int              modes = 1, n_q = 1;
