@@ -260,7 +260,7 @@ namespace granular_dg::network
   template <unsigned int nm, typename Out>
   void
   EdgeLines::rate_batch(const double *src, const unsigned int e, const unsigned int c,
-                        const Law law, double &F_left, const Out &out) const
+                        const Law &law, double &F_left, const Out &out) const
   {
     constexpr unsigned int nq = nm + 1;
     VA                     u[nm], v[nm];
@@ -300,7 +300,7 @@ namespace granular_dg::network
   /// of the p + 1 subcells of a cell of edge e (modes u) as Legendre modes.
   template <unsigned int nm>
   void
-  EdgeLines::subcell_rate(const double *u, const unsigned int e, const Law law,
+  EdgeLines::subcell_rate(const double *u, const unsigned int e, const Law &law,
                           const double F_left, const double F_right, double (&fv)[nm]) const
   {
     double mean[nm];

@@ -118,11 +118,11 @@ namespace granular_dg::network
     template <unsigned int nm, typename Out>
     void rate_edge(const double *src, unsigned int e, const Out &out) const;
     template <unsigned int nm, typename Out>
-    void rate_batch(const double *src, unsigned int e, unsigned int c, Law law, double &F_left,
-                    const Out &out) const;
+    void rate_batch(const double *src, unsigned int e, unsigned int c, const Law &law,
+                    double &F_left, const Out &out) const;
     template <unsigned int nm>
-    void subcell_rate(const double *u, unsigned int e, Law law, double F_left, double F_right,
-                      double (&fv)[nm]) const;
+    void subcell_rate(const double *u, unsigned int e, const Law &law, double F_left,
+                      double F_right, double (&fv)[nm]) const;
     template <unsigned int nm>
     void raw_blending_factors(const double *src, unsigned int e) const;
     double blending_factor(unsigned int e, unsigned int c) const;
