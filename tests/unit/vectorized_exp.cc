@@ -8,8 +8,10 @@
 // checks (one SIMD compare at the native width): a special value (NaN, +-inf,
 // +-0, subnormal, DBL_MAX, ...) in one lane and 1 in the others, in every
 // lane, at the native width, 4 and 1, against std::isfinite and > 0.
-// And shift_lanes_up (a lane permute at the native width) against the
-// lane-by-lane shift, at the native width, 4, 2 and 1.
+// And shift_lanes_up, shift_lanes_down (a lane permute at the native
+// width) against the lane-by-lane shift, and cell_major_batch (masked
+// permutes at width 8) against the cell-after-cell layout, for 1-10 values
+// per cell, at the native width, 4, 2 and 1.
 #include <deal.II/base/vectorization.h>
 
 #include <granular_dg/base/vectorized_math.h>
@@ -18,6 +20,7 @@
 #include <cstdio>
 #include <limits>
 #include <random>
+#include <utility>
 
 using dealii::VectorizedArray;
 
@@ -87,11 +90,42 @@ namespace
     VectorizedArray<double, width> x;
     for (unsigned int l = 0; l < width; ++l)
       x[l] = 1.5 + l;
-    const auto y  = granular_dg::shift_lanes_up(x, -7.25);
-    bool       ok = y[0] == -7.25;
+    const auto up   = granular_dg::shift_lanes_up(x, -7.25);
+    const auto down = granular_dg::shift_lanes_down(x, 9.5);
+    bool       ok   = up[0] == -7.25 && down[width - 1] == 9.5;
     for (unsigned int l = 1; l < width; ++l)
-      ok = ok && y[l] == x[l - 1];
+      ok = ok && up[l] == x[l - 1] && down[l - 1] == x[l];
     return ok;
+  }
+
+  /// the batches of cell_major_batch() one after the other: entry l n + k
+  /// must be x[k][l]
+  template <std::size_t width, unsigned int n>
+  bool
+  cell_major_agrees()
+  {
+    VectorizedArray<double, width> x[n];
+    for (unsigned int k = 0; k < n; ++k)
+      for (unsigned int l = 0; l < width; ++l)
+        x[k][l] = 100. * k + l;
+    bool ok = true;
+    for (unsigned int j = 0; j < n; ++j)
+      {
+        const auto b = granular_dg::cell_major_batch(x, j);
+        for (unsigned int e = 0; e < width; ++e)
+          {
+            const unsigned int f = j * width + e;
+            ok = ok && b[e] == x[f % n][f / n];
+          }
+      }
+    return ok;
+  }
+
+  template <std::size_t width, unsigned int... n>
+  bool
+  cell_major_agrees_for(std::integer_sequence<unsigned int, n...>)
+  {
+    return (cell_major_agrees<width, n + 1>() && ...);
   }
 } // namespace
 
@@ -127,6 +161,12 @@ main()
               lanes ? "yes" : "NO");
   const bool shift = shift_agrees<W>() && shift_agrees<4>() && shift_agrees<2>() &&
                      shift_agrees<1>();
-  std::printf("shift_lanes_up moves every lane up by one: %s\n", shift ? "yes" : "NO");
-  return wide <= 2. && unit <= 2. && same && special && lanes && shift ? 0 : 1;
+  std::printf("shift_lanes_up, shift_lanes_down move every lane by one: %s\n",
+              shift ? "yes" : "NO");
+  const auto values = std::make_integer_sequence<unsigned int, 10>();
+  const bool cells  = cell_major_agrees_for<W>(values) && cell_major_agrees_for<4>(values) &&
+                     cell_major_agrees_for<2>(values) && cell_major_agrees_for<1>(values);
+  std::printf("cell_major_batch gives the cell-after-cell layout (1-10 values): %s\n",
+              cells ? "yes" : "NO");
+  return wide <= 2. && unit <= 2. && same && special && lanes && shift && cells ? 0 : 1;
 }

@@ -177,4 +177,104 @@ namespace granular_dg
       r[l] = x[l - 1];
     return r;
   }
+
+  /// ... and down by one, last in the top lane: (x[1], ..., x[width - 1], last).
+  template <std::size_t width>
+  DEAL_II_ALWAYS_INLINE inline dealii::VectorizedArray<double, width>
+  shift_lanes_down(const dealii::VectorizedArray<double, width> &x, const double last)
+  {
+    dealii::VectorizedArray<double, width> r;
+#if DEAL_II_VECTORIZATION_WIDTH_IN_BITS >= 512 && defined(__AVX512F__)
+    if constexpr (width == 8)
+      {
+        // the concatenation (x | last broadcast) shifted down by one lane
+        r.data = _mm512_castsi512_pd(_mm512_alignr_epi64(
+          _mm512_castpd_si512(_mm512_set1_pd(last)), _mm512_castpd_si512(x.data), 1));
+        return r;
+      }
+#endif
+#if DEAL_II_VECTORIZATION_WIDTH_IN_BITS >= 256 && defined(__AVX2__)
+    if constexpr (width == 4)
+      {
+        // (x[1], x[2], x[3], x[0]), then lane 3 from last
+        r.data = _mm256_blend_pd(_mm256_permute4x64_pd(x.data, 0x39), _mm256_set1_pd(last), 0x8);
+        return r;
+      }
+#endif
+    for (unsigned int l = 0; l + 1 < width; ++l)
+      r[l] = x[l + 1];
+    r[width - 1] = last;
+    return r;
+  }
+
+  namespace internal
+  {
+    /// Where the entries of batch j of the cell-major layout of 8 cells of
+    /// n values come from: for value k, the lanes that hold one (a mask)
+    /// and the cell of each (the lane of x[k] it is in).
+    template <unsigned int n>
+    struct CellMajorSources
+    {
+      unsigned int  mask[n] = {};
+      long long int cell[n][8] = {};
+    };
+    template <unsigned int n>
+    constexpr CellMajorSources<n>
+    cell_major_sources(const unsigned int j)
+    {
+      CellMajorSources<n> s;
+      for (unsigned int e = 0; e < 8; ++e)
+        {
+          const unsigned int f = 8 * j + e, k = f % n;
+          s.mask[k] |= 1u << e;
+          s.cell[k][e] = f / n;
+        }
+      return s;
+    }
+    /// ... of every batch j < n
+    template <unsigned int n>
+    struct CellMajorTables
+    {
+      CellMajorSources<n> batch[n];
+      constexpr CellMajorTables()
+      {
+        for (unsigned int j = 0; j < n; ++j)
+          batch[j] = cell_major_sources<n>(j);
+      }
+    };
+  } // namespace internal
+
+  /// Batch j of the values of `width` cells stored cell after cell (cell l's
+  /// n values, value k of cell l in x[k][l]): the entries j width ..
+  /// (j + 1) width - 1 of that layout, j < n; what deal.II's
+  /// vectorized_transpose_and_store() writes for consecutive cells, here in
+  /// registers (one masked lane permute per value on AVX-512), so that a
+  /// batch update can read it without a store and a wide reload.
+  template <unsigned int n, std::size_t width>
+  DEAL_II_ALWAYS_INLINE inline dealii::VectorizedArray<double, width>
+  cell_major_batch(const dealii::VectorizedArray<double, width> (&x)[n], const unsigned int j)
+  {
+    dealii::VectorizedArray<double, width> r;
+    if constexpr (n == 1)
+      return x[0];
+#if DEAL_II_VECTORIZATION_WIDTH_IN_BITS >= 512 && defined(__AVX512F__)
+    else if constexpr (width == 8)
+      {
+        static constexpr internal::CellMajorTables<n> tables;
+        const auto                                   &t = tables.batch[j];
+        r.data                                          = _mm512_setzero_pd();
+        for (unsigned int k = 0; k < n; ++k)
+          if (t.mask[k] != 0)
+            r.data = _mm512_mask_permutexvar_pd(r.data, static_cast<__mmask8>(t.mask[k]),
+                                                _mm512_loadu_si512(t.cell[k]), x[k].data);
+        return r;
+      }
+#endif
+    else
+      {
+        for (unsigned int e = 0; e < width; ++e)
+          r[e] = x[(j * width + e) % n][(j * width + e) / n];
+        return r;
+      }
+  }
 } // namespace granular_dg

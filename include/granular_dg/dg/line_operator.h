@@ -297,10 +297,12 @@ namespace granular_dg::dg
       {
         dst[i] = rate;
       }
+      template <unsigned int n>
       void
-      batch(const std::size_t i, const double *rates, const unsigned int n) const
+      cells(const std::size_t i, const VA (&rate)[n]) const
       {
-        std::copy(rates, rates + n, dst + i);
+        for (unsigned int j = 0; j < n; ++j)
+          cell_major_batch(rate, j).store(dst + i + j * VA::size());
       }
     };
     /// cells per SIMD batch of apply_range() (the native width of the SIMD
@@ -746,12 +748,7 @@ namespace granular_dg::dg
       for (unsigned int i = 0; i < nc; ++i)
         for (unsigned int k = 0; k < nm; ++k)
           rate[i * nm + k] = (res[i][k] - F_right[i] * at_1[k] + F_left_va[i] * at_0[k]) * inv_h;
-      unsigned int offsets[W];
-      for (unsigned int l = 0; l < W; ++l)
-        offsets[l] = l * dpc;
-      double rates[W * dpc];
-      vectorized_transpose_and_store(false, dpc, rate, offsets, rates);
-      out.batch(c * dpc, rates, W * dpc);
+      out.template cells<dpc>(c * dpc, rate);
     }
 
     /// The tables of subcell blending for the degree (if it is on).

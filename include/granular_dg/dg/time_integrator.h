@@ -4,6 +4,8 @@
 #include <deal.II/base/vectorization.h>
 #include <deal.II/lac/la_parallel_vector.h>
 
+#include <granular_dg/base/vectorized_math.h>
+
 #include <functional>
 #include <utility>
 #include <vector>
@@ -107,9 +109,9 @@ namespace granular_dg::dg
 
   /**
    * Where an operator's cell loop puts the rates of a fused stage: dst[i] =
-   * stage_value(..., src[i], old[i], rate) for one value, batch(i, rates, n)
-   * for the n values from index i at once (n a multiple of the SIMD width),
-   * the same values lane by lane. with_old: a StageUpdate with s.old.
+   * stage_value(..., src[i], old[i], rate) for one value, cells(i, rate) for
+   * a SIMD batch of cells from index i on, the same values lane by lane.
+   * with_old: a StageUpdate with s.old.
    */
   template <bool with_old>
   struct StageWriter
@@ -127,24 +129,28 @@ namespace granular_dg::dg
         dst[i] = stage_value(gamma, src[i], rate);
     }
 
+    /// The rates of W cells (W the SIMD width) of n values each from index
+    /// i on, cell after cell: rate[k][l] is value k of cell l.
+    template <unsigned int n>
     void
-    batch(const std::size_t i, const double *rates, const unsigned int n) const
+    cells(const std::size_t i, const dealii::VectorizedArray<double> (&rate)[n]) const
     {
       using VA = dealii::VectorizedArray<double>;
       const VA a = alpha, b = beta, g = gamma;
-      for (unsigned int j = 0; j < n; j += VA::size())
+      for (unsigned int j = 0; j < n; ++j)
         {
-          VA u, r;
-          u.load(src + i + j);
-          r.load(rates + j);
+          const std::size_t at = i + j * VA::size();
+          const VA          r  = cell_major_batch(rate, j);
+          VA                u;
+          u.load(src + at);
           if constexpr (with_old)
             {
               VA o;
-              o.load(old + i + j);
-              stage_value(a, b, g, u, o, r).store(dst + i + j);
+              o.load(old + at);
+              stage_value(a, b, g, u, o, r).store(dst + at);
             }
           else
-            stage_value(g, u, r).store(dst + i + j);
+            stage_value(g, u, r).store(dst + at);
         }
     }
   };

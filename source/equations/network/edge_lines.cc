@@ -171,7 +171,7 @@ namespace granular_dg::network
   }
 
   /// dg::LineOperator::apply_range() on the cells of edge e: out(i, r) for
-  /// every array index i of the edge and its rate r (out.batch() for the
+  /// every array index i of the edge and its rate r (out.cells() for the
   /// values of a SIMD batch), a cell's entries after all reads of it and of
   /// its left neighbour (out may overwrite src).
   template <unsigned int nm, typename Out>
@@ -291,9 +291,7 @@ namespace granular_dg::network
     VA       rate[nm];
     for (unsigned int k = 0; k < nm; ++k)
       rate[k] = (res[k] - F_right * at_1[k] + F_left_va * at_0[k]) * inv_h;
-    double rates[W * nm];
-    store_cells<nm>(rate, rates);
-    out.batch(index(e, c), rates, W * nm);
+    out.template cells<nm>(index(e, c), rate);
   }
 
   /// dg::LineOperator::subcell_rate(): the first-order finite-volume rate
@@ -485,14 +483,9 @@ namespace granular_dg::network
     load_cells<nm>(u + index(e, c), x);
     // the neighbours' means: the batch's own, shifted by one lane, and at
     // the batch's ends the next cells or the outer states beyond the edge
-    VA avg_m, avg_p;
-    avg_m[0]     = c > 0 ? u[index(e, c - 1)] : outer[2 * e];
-    avg_p[W - 1] = c + W < cells[e] ? u[index(e, c + W)] : outer[2 * e + 1];
-    for (unsigned int l = 1; l < W; ++l)
-      {
-        avg_m[l]     = x[0][l - 1];
-        avg_p[l - 1] = x[0][l];
-      }
+    const VA avg_m = shift_lanes_up(x[0], c > 0 ? u[index(e, c - 1)] : outer[2 * e]);
+    const VA avg_p =
+      shift_lanes_down(x[0], c + W < cells[e] ? u[index(e, c + W)] : outer[2 * e + 1]);
     VA dp = avg_p - x[0], dm = x[0] - avg_m;
     // at an outflow end the missing difference does not limit
     if (c == 0 && end_kind[2 * e] == EndKind::outflow)
