@@ -8,7 +8,7 @@
 // checks (one SIMD compare at the native width): a special value (NaN, +-inf,
 // +-0, subnormal, DBL_MAX, ...) in one lane and 1 in the others, in every
 // lane, at the native width, 4 and 1, against std::isfinite and > 0.
-// And shift_lanes_up, shift_lanes_down (a lane permute at the native
+// And shift_lanes up and down (a lane permute at the native
 // width) against the lane-by-lane shift, and cell_major_batch (masked
 // permutes at width 8) against the cell-after-cell layout, for 1-10 values
 // per cell, at the native width, 4, 2 and 1.
@@ -90,8 +90,8 @@ namespace
     VectorizedArray<double, width> x;
     for (unsigned int l = 0; l < width; ++l)
       x[l] = 1.5 + l;
-    const auto up   = granular_dg::shift_lanes_up(x, -7.25);
-    const auto down = granular_dg::shift_lanes_down(x, 9.5);
+    const auto up   = granular_dg::shift_lanes<true>(x, -7.25);
+    const auto down = granular_dg::shift_lanes<false>(x, 9.5);
     bool       ok   = up[0] == -7.25 && down[width - 1] == 9.5;
     for (unsigned int l = 1; l < width; ++l)
       ok = ok && up[l] == x[l - 1] && down[l - 1] == x[l];
@@ -161,7 +161,7 @@ main()
               lanes ? "yes" : "NO");
   const bool shift = shift_agrees<W>() && shift_agrees<4>() && shift_agrees<2>() &&
                      shift_agrees<1>();
-  std::printf("shift_lanes_up, shift_lanes_down move every lane by one: %s\n",
+  std::printf("shift_lanes moves every lane up or down by one: %s\n",
               shift ? "yes" : "NO");
   const auto values = std::make_integer_sequence<unsigned int, 10>();
   const bool cells  = cell_major_agrees_for<W>(values) && cell_major_agrees_for<4>(values) &&

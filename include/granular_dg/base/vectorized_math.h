@@ -144,66 +144,44 @@ namespace granular_dg
     return internal::all_lanes_compare_zero<internal::greater_than>(x);
   }
 
-  /// The lanes of x moved up by one, first in lane 0: (first, x[0], ...,
-  /// x[width - 2]). One lane permute where VectorizedArray holds a native
-  /// register (AVX-512, AVX2): the flux through the left faces of a batch of
-  /// cells from the fluxes through their right faces, without the store and
-  /// wide reload that a lane-by-lane copy compiles to (a failed store
-  /// forwarding in every batch of the network's line engine).
-  template <std::size_t width>
+  /// The lanes of x moved by one lane towards the top (up: (fill, x[0], ...,
+  /// x[width - 2])) or the bottom ((x[1], ..., x[width - 1], fill)). One lane
+  /// permute where VectorizedArray holds a native register (AVX-512, AVX2):
+  /// the states or fluxes of a batch of cells' neighbours from the batch's
+  /// own, without the store and wide reload that a lane-by-lane copy
+  /// compiles to (a failed store forwarding in every batch of a line engine).
+  template <bool up, std::size_t width>
   DEAL_II_ALWAYS_INLINE inline dealii::VectorizedArray<double, width>
-  shift_lanes_up(const dealii::VectorizedArray<double, width> &x, const double first)
+  shift_lanes(const dealii::VectorizedArray<double, width> &x, const double fill)
   {
     dealii::VectorizedArray<double, width> r;
 #if DEAL_II_VECTORIZATION_WIDTH_IN_BITS >= 512 && defined(__AVX512F__)
     if constexpr (width == 8)
       {
-        // the concatenation (first broadcast | x) shifted down by 7 lanes
-        r.data = _mm512_castsi512_pd(_mm512_alignr_epi64(
-          _mm512_castpd_si512(x.data), _mm512_castpd_si512(_mm512_set1_pd(first)), 7));
+        // alignr(high, low, s): the concatenation (low | high) shifted down by s lanes
+        const __m512i v = _mm512_castpd_si512(x.data),
+                      f = _mm512_castpd_si512(_mm512_set1_pd(fill));
+        if constexpr (up)
+          r.data = _mm512_castsi512_pd(_mm512_alignr_epi64(v, f, 7));
+        else
+          r.data = _mm512_castsi512_pd(_mm512_alignr_epi64(f, v, 1));
         return r;
       }
 #endif
 #if DEAL_II_VECTORIZATION_WIDTH_IN_BITS >= 256 && defined(__AVX2__)
     if constexpr (width == 4)
       {
-        // (x[3], x[0], x[1], x[2]), then lane 0 from first
-        r.data = _mm256_blend_pd(_mm256_permute4x64_pd(x.data, 0x93), _mm256_set1_pd(first), 0x1);
+        // (x[3], x[0], x[1], x[2]) or (x[1], x[2], x[3], x[0]), then the free lane
+        const __m256d f = _mm256_set1_pd(fill);
+        if constexpr (up)
+          r.data = _mm256_blend_pd(_mm256_permute4x64_pd(x.data, 0x93), f, 0x1);
+        else
+          r.data = _mm256_blend_pd(_mm256_permute4x64_pd(x.data, 0x39), f, 0x8);
         return r;
       }
 #endif
-    r[0] = first;
-    for (unsigned int l = 1; l < width; ++l)
-      r[l] = x[l - 1];
-    return r;
-  }
-
-  /// ... and down by one, last in the top lane: (x[1], ..., x[width - 1], last).
-  template <std::size_t width>
-  DEAL_II_ALWAYS_INLINE inline dealii::VectorizedArray<double, width>
-  shift_lanes_down(const dealii::VectorizedArray<double, width> &x, const double last)
-  {
-    dealii::VectorizedArray<double, width> r;
-#if DEAL_II_VECTORIZATION_WIDTH_IN_BITS >= 512 && defined(__AVX512F__)
-    if constexpr (width == 8)
-      {
-        // the concatenation (x | last broadcast) shifted down by one lane
-        r.data = _mm512_castsi512_pd(_mm512_alignr_epi64(
-          _mm512_castpd_si512(_mm512_set1_pd(last)), _mm512_castpd_si512(x.data), 1));
-        return r;
-      }
-#endif
-#if DEAL_II_VECTORIZATION_WIDTH_IN_BITS >= 256 && defined(__AVX2__)
-    if constexpr (width == 4)
-      {
-        // (x[1], x[2], x[3], x[0]), then lane 3 from last
-        r.data = _mm256_blend_pd(_mm256_permute4x64_pd(x.data, 0x39), _mm256_set1_pd(last), 0x8);
-        return r;
-      }
-#endif
-    for (unsigned int l = 0; l + 1 < width; ++l)
-      r[l] = x[l + 1];
-    r[width - 1] = last;
+    for (unsigned int l = 0; l < width; ++l)
+      r[l] = up ? (l == 0 ? fill : x[l - 1]) : (l + 1 == width ? fill : x[l + 1]);
     return r;
   }
 

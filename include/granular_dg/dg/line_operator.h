@@ -738,7 +738,7 @@ namespace granular_dg::dg
       State<VA>       F_left_va;
       for (unsigned int i = 0; i < nc; ++i)
         {
-          F_left_va[i] = shift_lanes_up(F_right[i], F_left[i]);
+          F_left_va[i] = shift_lanes<true>(F_right[i], F_left[i]);
           F_left[i]    = F_right[i][W - 1];
         }
 

@@ -284,7 +284,7 @@ namespace granular_dg::network
     VA F_right = law.flux(U1, V0);
     if (c + W == cells[e])
       F_right[W - 1] = law.flux(U1[W - 1], outer_of(e, 1, U1[W - 1]));
-    const VA F_left_va = shift_lanes_up(F_right, F_left);
+    const VA F_left_va = shift_lanes<true>(F_right, F_left);
     F_left             = F_right[W - 1];
 
     const VA inv_h = inverse_h[e];
@@ -483,9 +483,9 @@ namespace granular_dg::network
     load_cells<nm>(u + index(e, c), x);
     // the neighbours' means: the batch's own, shifted by one lane, and at
     // the batch's ends the next cells or the outer states beyond the edge
-    const VA avg_m = shift_lanes_up(x[0], c > 0 ? u[index(e, c - 1)] : outer[2 * e]);
+    const VA avg_m = shift_lanes<true>(x[0], c > 0 ? u[index(e, c - 1)] : outer[2 * e]);
     const VA avg_p =
-      shift_lanes_down(x[0], c + W < cells[e] ? u[index(e, c + W)] : outer[2 * e + 1]);
+      shift_lanes<false>(x[0], c + W < cells[e] ? u[index(e, c + W)] : outer[2 * e + 1]);
     VA dp = avg_p - x[0], dm = x[0] - avg_m;
     // at an outflow end the missing difference does not limit
     if (c == 0 && end_kind[2 * e] == EndKind::outflow)
