@@ -9,9 +9,9 @@
 // +-0, subnormal, DBL_MAX, ...) in one lane and 1 in the others, in every
 // lane, at the native width, 4 and 1, against std::isfinite and > 0.
 // And shift_lanes up and down (a lane permute at the native
-// width) against the lane-by-lane shift, and cell_major_batch (masked
-// permutes at width 8) against the cell-after-cell layout, for 1-10 values
-// per cell, at the native width, 4, 2 and 1.
+// width) against the lane-by-lane shift, and cell_major_batch and
+// load_cell_major (masked permutes at width 8) against the cell-after-cell
+// layout, for 1-10 values per cell, at the native width, 4, 2 and 1.
 #include <deal.II/base/vectorization.h>
 
 #include <granular_dg/base/vectorized_math.h>
@@ -118,6 +118,15 @@ namespace
             ok = ok && b[e] == x[f % n][f / n];
           }
       }
+    // and back: load_cell_major()
+    double in[width * n];
+    for (unsigned int f = 0; f < width * n; ++f)
+      in[f] = x[f % n][f / n];
+    VectorizedArray<double, width> y[n];
+    granular_dg::load_cell_major(in, y);
+    for (unsigned int k = 0; k < n; ++k)
+      for (unsigned int l = 0; l < width; ++l)
+        ok = ok && y[k][l] == x[k][l];
     return ok;
   }
 
@@ -166,7 +175,7 @@ main()
   const auto values = std::make_integer_sequence<unsigned int, 10>();
   const bool cells  = cell_major_agrees_for<W>(values) && cell_major_agrees_for<4>(values) &&
                      cell_major_agrees_for<2>(values) && cell_major_agrees_for<1>(values);
-  std::printf("cell_major_batch gives the cell-after-cell layout (1-10 values): %s\n",
+  std::printf("cell_major_batch, load_cell_major: the cell-after-cell layout (1-10 values): %s\n",
               cells ? "yes" : "NO");
   return wide <= 2. && unit <= 2. && same && special && lanes && shift && cells ? 0 : 1;
 }

@@ -209,15 +209,23 @@ namespace granular_dg
         }
       return s;
     }
-    /// ... of every batch j < n
+    /// ... of every batch j < n; and the other way round, for value k of the
+    /// cells, the lanes of batch j (the mask) and their entries there (cell)
     template <unsigned int n>
     struct CellMajorTables
     {
-      CellMajorSources<n> batch[n];
+      CellMajorSources<n> batch[n], value[n];
       constexpr CellMajorTables()
       {
         for (unsigned int j = 0; j < n; ++j)
           batch[j] = cell_major_sources<n>(j);
+        for (unsigned int k = 0; k < n; ++k)
+          for (unsigned int l = 0; l < 8; ++l)
+            {
+              const unsigned int f = l * n + k;
+              value[k].mask[f / 8] |= 1u << l;
+              value[k].cell[f / 8][l] = f % 8;
+            }
       }
     };
   } // namespace internal
@@ -253,6 +261,44 @@ namespace granular_dg
         for (unsigned int e = 0; e < width; ++e)
           r[e] = x[(j * width + e) % n][(j * width + e) / n];
         return r;
+      }
+  }
+
+  /// The inverse of cell_major_batch(): x[k][l] = in[l n + k], the n values
+  /// of `width` cells stored cell after cell (deal.II's
+  /// vectorized_load_and_transpose() for consecutive cells). On AVX-512 with
+  /// n = 2, 3, where deal.II gathers every value, n contiguous loads and
+  /// masked lane permutes (from n = 4 on its shuffles are faster).
+  template <unsigned int n, std::size_t width>
+  DEAL_II_ALWAYS_INLINE inline void
+  load_cell_major(const double *in, dealii::VectorizedArray<double, width> (&x)[n])
+  {
+    if constexpr (n == 1)
+      x[0].load(in);
+#if DEAL_II_VECTORIZATION_WIDTH_IN_BITS >= 512 && defined(__AVX512F__)
+    else if constexpr (width == 8 && n < 4)
+      {
+        static constexpr internal::CellMajorTables<n> tables;
+        __m512d                                       batch[n];
+        for (unsigned int j = 0; j < n; ++j)
+          batch[j] = _mm512_loadu_pd(in + 8 * j);
+        for (unsigned int k = 0; k < n; ++k)
+          {
+            const auto &t = tables.value[k];
+            x[k].data     = _mm512_setzero_pd();
+            for (unsigned int j = 0; j < n; ++j)
+              if (t.mask[j] != 0)
+                x[k].data = _mm512_mask_permutexvar_pd(x[k].data, static_cast<__mmask8>(t.mask[j]),
+                                                       _mm512_loadu_si512(t.cell[j]), batch[j]);
+          }
+      }
+#endif
+    else
+      {
+        unsigned int offsets[width];
+        for (unsigned int l = 0; l < width; ++l)
+          offsets[l] = l * n;
+        dealii::vectorized_load_and_transpose(n, in, offsets, x);
       }
   }
 } // namespace granular_dg

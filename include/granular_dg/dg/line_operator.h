@@ -332,16 +332,15 @@ namespace granular_dg::dg
                Coefficients<VA> &a) const
     {
       constexpr unsigned int dpc = n_components * nm;
-      unsigned int           offsets[batch_width], coefficient_offsets[batch_width];
-      for (unsigned int l = 0; l < batch_width; ++l)
-        {
-          offsets[l]             = l * dpc;
-          coefficient_offsets[l] = l * n_coefficients;
-        }
-      vectorized_load_and_transpose(dpc, src + c * dpc, offsets, u);
+      load_cell_major(src + c * dpc, u);
       if constexpr (n_coefficients > 0)
-        vectorized_load_and_transpose(n_coefficients, coefficients[c].data(),
-                                      coefficient_offsets, a.data());
+        {
+          unsigned int coefficient_offsets[batch_width];
+          for (unsigned int l = 0; l < batch_width; ++l)
+            coefficient_offsets[l] = l * n_coefficients;
+          vectorized_load_and_transpose(n_coefficients, coefficients[c].data(),
+                                        coefficient_offsets, a.data());
+        }
     }
 
     /// The state at point q of the cells with modes u (double or a batch).

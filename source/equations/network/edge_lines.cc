@@ -34,15 +34,7 @@ namespace granular_dg::network
     DEAL_II_ALWAYS_INLINE inline void
     load_cells(const double *first, VA (&x)[nm])
     {
-      if constexpr (nm == 1)
-        x[0].load(first);
-      else
-        {
-          unsigned int offsets[W];
-          for (unsigned int l = 0; l < W; ++l)
-            offsets[l] = l * nm;
-          vectorized_load_and_transpose(nm, first, offsets, x);
-        }
+      load_cell_major(first, x);
     }
 
     /// store_cells(): the inverse of load_cells()
