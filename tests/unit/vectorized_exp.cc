@@ -9,9 +9,10 @@
 // +-0, subnormal, DBL_MAX, ...) in one lane and 1 in the others, in every
 // lane, at the native width, 4 and 1, against std::isfinite and > 0.
 // And shift_lanes up and down (a lane permute at the native
-// width) against the lane-by-lane shift, and cell_major_batch and
-// load_cell_major (masked permutes at width 8) against the cell-after-cell
-// layout, for 1-10 values per cell, at the native width, 4, 2 and 1.
+// width) against the lane-by-lane shift, and cell_major_batch,
+// for_cell_major_batches and load_cell_major (masked permutes at width 8)
+// against the cell-after-cell layout, for 1-10 values per cell, at the
+// native width, 4, 2 and 1.
 #include <deal.II/base/vectorization.h>
 
 #include <granular_dg/base/vectorized_math.h>
@@ -118,6 +119,11 @@ namespace
             ok = ok && b[e] == x[f % n][f / n];
           }
       }
+    // the same batches through for_cell_major_batches()
+    granular_dg::for_cell_major_batches(x, [&](const unsigned int j, const auto &b) {
+      for (unsigned int e = 0; e < width; ++e)
+        ok = ok && b[e] == x[(j * width + e) % n][(j * width + e) / n];
+    });
     // and back: load_cell_major()
     double in[width * n];
     for (unsigned int f = 0; f < width * n; ++f)

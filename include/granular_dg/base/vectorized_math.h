@@ -264,6 +264,36 @@ namespace granular_dg
       }
   }
 
+  /// f(j, cell_major_batch(x, j)) for j = 0 .. n - 1; without AVX-512
+  /// through deal.II's vectorized_transpose_and_store() into a local array
+  /// (its shuffles beat a lane-by-lane assembly there).
+  template <unsigned int n, std::size_t width, typename F>
+  DEAL_II_ALWAYS_INLINE inline void
+  for_cell_major_batches(const dealii::VectorizedArray<double, width> (&x)[n], const F &f)
+  {
+#if DEAL_II_VECTORIZATION_WIDTH_IN_BITS >= 512 && defined(__AVX512F__)
+    if constexpr (n == 1 || width == 8)
+#else
+    if constexpr (n == 1)
+#endif
+      for (unsigned int j = 0; j < n; ++j)
+        f(j, cell_major_batch(x, j));
+    else
+      {
+        unsigned int offsets[width];
+        for (unsigned int l = 0; l < width; ++l)
+          offsets[l] = l * n;
+        double values[width * n];
+        dealii::vectorized_transpose_and_store(false, n, x, offsets, values);
+        for (unsigned int j = 0; j < n; ++j)
+          {
+            dealii::VectorizedArray<double, width> batch;
+            batch.load(values + j * width);
+            f(j, batch);
+          }
+      }
+  }
+
   /// The inverse of cell_major_batch(): x[k][l] = in[l n + k], the n values
   /// of `width` cells stored cell after cell (deal.II's
   /// vectorized_load_and_transpose() for consecutive cells). On AVX-512 with

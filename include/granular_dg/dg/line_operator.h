@@ -301,8 +301,9 @@ namespace granular_dg::dg
       void
       cells(const std::size_t i, const VA (&rate)[n]) const
       {
-        for (unsigned int j = 0; j < n; ++j)
-          cell_major_batch(rate, j).store(dst + i + j * VA::size());
+        for_cell_major_batches(rate, [&](const unsigned int j, const VA &r) {
+          r.store(dst + i + j * VA::size());
+        });
       }
     };
     /// cells per SIMD batch of apply_range() (the native width of the SIMD

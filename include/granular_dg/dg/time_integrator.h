@@ -137,21 +137,19 @@ namespace granular_dg::dg
     {
       using VA = dealii::VectorizedArray<double>;
       const VA a = alpha, b = beta, g = gamma;
-      for (unsigned int j = 0; j < n; ++j)
-        {
-          const std::size_t at = i + j * VA::size();
-          const VA          r  = cell_major_batch(rate, j);
-          VA                u;
-          u.load(src + at);
-          if constexpr (with_old)
-            {
-              VA o;
-              o.load(old + at);
-              stage_value(a, b, g, u, o, r).store(dst + at);
-            }
-          else
-            stage_value(g, u, r).store(dst + at);
-        }
+      for_cell_major_batches(rate, [&](const unsigned int j, const VA &r) {
+        const std::size_t at = i + j * VA::size();
+        VA                u;
+        u.load(src + at);
+        if constexpr (with_old)
+          {
+            VA o;
+            o.load(old + at);
+            stage_value(a, b, g, u, o, r).store(dst + at);
+          }
+        else
+          stage_value(g, u, r).store(dst + at);
+      });
     }
   };
 
