@@ -187,47 +187,48 @@ namespace granular_dg
 
   namespace internal
   {
-    /// Where the entries of batch j of the cell-major layout of 8 cells of
-    /// n values come from: for value k, the lanes that hold one (a mask)
-    /// and the cell of each (the lane of x[k] it is in).
+    /// A lane permute of n registers into one: for each register i, the
+    /// lanes it fills (mask[i]) and the lane of register i each takes (lane[i]).
     template <unsigned int n>
-    struct CellMajorSources
+    struct LaneSources
     {
-      unsigned int  mask[n] = {};
-      long long int cell[n][8] = {};
+      unsigned int  mask[n]    = {};
+      long long int lane[n][8] = {};
     };
-    template <unsigned int n>
-    constexpr CellMajorSources<n>
-    cell_major_sources(const unsigned int j)
-    {
-      CellMajorSources<n> s;
-      for (unsigned int e = 0; e < 8; ++e)
-        {
-          const unsigned int f = 8 * j + e, k = f % n;
-          s.mask[k] |= 1u << e;
-          s.cell[k][e] = f / n;
-        }
-      return s;
-    }
-    /// ... of every batch j < n; and the other way round, for value k of the
-    /// cells, the lanes of batch j (the mask) and their entries there (cell)
+    /// The cell-major layout of 8 cells of n values, entry f = l n + k (value k
+    /// of cell l) in lane f % 8 of batch f / 8, as permutes both ways: batch[j]
+    /// gathers batch j from the value registers x[k] (lane l: cell l),
+    /// value[k] gathers x[k] from the batches.
     template <unsigned int n>
     struct CellMajorTables
     {
-      CellMajorSources<n> batch[n], value[n];
+      LaneSources<n> batch[n], value[n];
       constexpr CellMajorTables()
       {
-        for (unsigned int j = 0; j < n; ++j)
-          batch[j] = cell_major_sources<n>(j);
-        for (unsigned int k = 0; k < n; ++k)
-          for (unsigned int l = 0; l < 8; ++l)
-            {
-              const unsigned int f = l * n + k;
-              value[k].mask[f / 8] |= 1u << l;
-              value[k].cell[f / 8][l] = f % 8;
-            }
+        for (unsigned int f = 0; f < 8 * n; ++f)
+          {
+            const unsigned int j = f / 8, e = f % 8, l = f / n, k = f % n;
+            batch[j].mask[k] |= 1u << e;
+            batch[j].lane[k][e] = l;
+            value[k].mask[j] |= 1u << l;
+            value[k].lane[j][l] = e;
+          }
       }
     };
+#if DEAL_II_VECTORIZATION_WIDTH_IN_BITS >= 512 && defined(__AVX512F__)
+    /// The register the LaneSources s make of the registers source(i), i < n.
+    template <unsigned int n, typename Source>
+    DEAL_II_ALWAYS_INLINE inline __m512d
+    permute_lanes(const LaneSources<n> &s, const Source &source)
+    {
+      __m512d r = _mm512_setzero_pd();
+      for (unsigned int i = 0; i < n; ++i)
+        if (s.mask[i] != 0)
+          r = _mm512_mask_permutexvar_pd(r, static_cast<__mmask8>(s.mask[i]),
+                                         _mm512_loadu_si512(s.lane[i]), source(i));
+      return r;
+    }
+#endif
   } // namespace internal
 
   /// Batch j of the values of `width` cells stored cell after cell (cell l's
@@ -247,12 +248,7 @@ namespace granular_dg
     else if constexpr (width == 8)
       {
         static constexpr internal::CellMajorTables<n> tables;
-        const auto                                   &t = tables.batch[j];
-        r.data                                          = _mm512_setzero_pd();
-        for (unsigned int k = 0; k < n; ++k)
-          if (t.mask[k] != 0)
-            r.data = _mm512_mask_permutexvar_pd(r.data, static_cast<__mmask8>(t.mask[k]),
-                                                _mm512_loadu_si512(t.cell[k]), x[k].data);
+        r.data = internal::permute_lanes(tables.batch[j], [&](const unsigned int k) { return x[k].data; });
         return r;
       }
 #endif
@@ -264,9 +260,26 @@ namespace granular_dg
       }
   }
 
+  /// out[l n + k] = x[k][l]: the n values of `width` cells stored cell after
+  /// cell (deal.II's vectorized_transpose_and_store() for consecutive cells).
+  template <unsigned int n, std::size_t width>
+  DEAL_II_ALWAYS_INLINE inline void
+  store_cell_major(const dealii::VectorizedArray<double, width> (&x)[n], double *out)
+  {
+    if constexpr (n == 1)
+      x[0].store(out);
+    else
+      {
+        unsigned int offsets[width];
+        for (unsigned int l = 0; l < width; ++l)
+          offsets[l] = l * n;
+        dealii::vectorized_transpose_and_store(false, n, x, offsets, out);
+      }
+  }
+
   /// f(j, cell_major_batch(x, j)) for j = 0 .. n - 1; without AVX-512
-  /// through deal.II's vectorized_transpose_and_store() into a local array
-  /// (its shuffles beat a lane-by-lane assembly there).
+  /// through store_cell_major() into a local array (deal.II's shuffles beat
+  /// a lane-by-lane assembly there).
   template <unsigned int n, std::size_t width, typename F>
   DEAL_II_ALWAYS_INLINE inline void
   for_cell_major_batches(const dealii::VectorizedArray<double, width> (&x)[n], const F &f)
@@ -280,11 +293,8 @@ namespace granular_dg
         f(j, cell_major_batch(x, j));
     else
       {
-        unsigned int offsets[width];
-        for (unsigned int l = 0; l < width; ++l)
-          offsets[l] = l * n;
         double values[width * n];
-        dealii::vectorized_transpose_and_store(false, n, x, offsets, values);
+        store_cell_major(x, values);
         for (unsigned int j = 0; j < n; ++j)
           {
             dealii::VectorizedArray<double, width> batch;
@@ -313,14 +323,7 @@ namespace granular_dg
         for (unsigned int j = 0; j < n; ++j)
           batch[j] = _mm512_loadu_pd(in + 8 * j);
         for (unsigned int k = 0; k < n; ++k)
-          {
-            const auto &t = tables.value[k];
-            x[k].data     = _mm512_setzero_pd();
-            for (unsigned int j = 0; j < n; ++j)
-              if (t.mask[j] != 0)
-                x[k].data = _mm512_mask_permutexvar_pd(x[k].data, static_cast<__mmask8>(t.mask[j]),
-                                                       _mm512_loadu_si512(t.cell[j]), batch[j]);
-          }
+          x[k].data = internal::permute_lanes(tables.value[k], [&](const unsigned int j) { return batch[j]; });
       }
 #endif
     else

@@ -28,30 +28,6 @@ namespace granular_dg::network
         s += u[k] * B[k];
       return s;
     }
-
-    /// the modes of W consecutive cells (lane l: cell l), nm per cell
-    template <unsigned int nm>
-    DEAL_II_ALWAYS_INLINE inline void
-    load_cells(const double *first, VA (&x)[nm])
-    {
-      load_cell_major(first, x);
-    }
-
-    /// store_cells(): the inverse of load_cells()
-    template <unsigned int nm>
-    DEAL_II_ALWAYS_INLINE inline void
-    store_cells(const VA (&x)[nm], double *first)
-    {
-      if constexpr (nm == 1)
-        x[0].store(first);
-      else
-        {
-          unsigned int offsets[W];
-          for (unsigned int l = 0; l < W; ++l)
-            offsets[l] = l * nm;
-          vectorized_transpose_and_store(false, nm, x, offsets, first);
-        }
-    }
   } // namespace
 
   /// An edge's flux law and numerical flux, copied into the kernels (a
@@ -256,8 +232,8 @@ namespace granular_dg::network
   {
     constexpr unsigned int nq = nm + 1;
     VA                     u[nm], v[nm];
-    load_cells<nm>(src + index(e, c), u);
-    load_cells<nm>(src + index(e, c + 1), v);
+    load_cell_major<nm>(src + index(e, c), u);
+    load_cell_major<nm>(src + index(e, c + 1), v);
     VA res[nm] = {};
     for (unsigned int q = 0; nm > 1 && q < nq; ++q)
       {
@@ -394,7 +370,7 @@ namespace granular_dg::network
     for (; W > 1 && c + W <= cells[e]; c += W)
       {
         VA u[nm];
-        load_cells<nm>(src + index(e, c), u);
+        load_cell_major<nm>(src + index(e, c), u);
         lanes = std::max(lanes, cell_value(u, VA(h[e])));
       }
     for (; c < cells[e]; ++c)
@@ -472,7 +448,7 @@ namespace granular_dg::network
   EdgeLines::limit_batch(double *u, const unsigned int e, const unsigned int c) const
   {
     VA x[nm];
-    load_cells<nm>(u + index(e, c), x);
+    load_cell_major<nm>(u + index(e, c), x);
     // the neighbours' means: the batch's own, shifted by one lane, and at
     // the batch's ends the next cells or the outer states beyond the edge
     const VA avg_m = shift_lanes<true>(x[0], c > 0 ? u[index(e, c - 1)] : outer[2 * e]);
@@ -521,7 +497,7 @@ namespace granular_dg::network
     x[1]             = compare_and_apply_mask<S::equal>(keeps, zero, limited, x[1]);
     for (unsigned int k = 2; k < nm; ++k)
       x[k] = compare_and_apply_mask<S::equal>(keeps, zero, zero, x[k]);
-    store_cells<nm>(x, u + index(e, c));
+    store_cell_major<nm>(x, u + index(e, c));
     return troubled;
   }
 
