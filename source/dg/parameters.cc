@@ -324,6 +324,18 @@ namespace granular_dg::dg
              "must be in (0, 1] with subcell blending = true");
   }
 
+  double
+  DiscretizationParameters::time_step(const double       max_speed_over_h,
+                                      const std::string &time_name, const double t) const
+  {
+    const double dt = cfl / max_speed_over_h;
+    if (!(std::isfinite(dt) && dt > 0))
+      throw RunError("time step is " + format_number(dt) + " at " + time_name + " = " +
+                     format_number(t) + " (max wave speed/h = " +
+                     format_number(max_speed_over_h) + ")");
+    return dt;
+  }
+
   DiscretizationParameters
   DiscretizationParameters::for_study(const RunParameters &run, const unsigned int i) const
   {

@@ -80,6 +80,12 @@ namespace granular_dg::dg
     DiscretizationParameters
     for_study(const RunParameters &run, unsigned int i) const;
 
+    /// The time step CFL number / max_speed_over_h (the largest wave speed
+    /// over the cell size); a RunError at (time_name =) t if it is not a
+    /// positive finite number.
+    double
+    time_step(double max_speed_over_h, const std::string &time_name, double t) const;
+
   private:
     void
     bind_time_stepping(ParameterBinding &b, const RunParameters &run);

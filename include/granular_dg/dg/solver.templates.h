@@ -8,6 +8,7 @@
 #include <deal.II/numerics/data_out.h>
 #include <deal.II/numerics/data_postprocessor.h>
 
+#include <granular_dg/base/convergence_study.h>
 #include <granular_dg/base/errors.h>
 #include <granular_dg/base/run_parameters.h>
 #include <granular_dg/base/time_loop.h>
@@ -20,7 +21,6 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
-#include <iomanip>
 #include <iostream>
 #include <sstream>
 
@@ -322,12 +322,8 @@ namespace granular_dg::dg
       }
     const double speed = op->max_speed_over_h(solution, scene.min_wave_speed);
     op->use_cells_at_rest(Operator<dim>::RestUse::off);
-    const double dt    = method.cfl / speed;
-    if (!(std::isfinite(dt) && dt > 0))
-      throw RunError("time step is " + format_number(dt) + " at " + scene.time_name + " = " +
-                     format_number(t) + " (max wave speed/h = " + format_number(speed) + ")");
-    cfl_step = dt;
-    return dt;
+    cfl_step = method.time_step(speed, scene.time_name, t);
+    return cfl_step;
   }
 
   template <int dim, typename Physics>
@@ -861,67 +857,32 @@ namespace granular_dg::dg
     const std::function<SceneData<dim, Physics>(unsigned int)> &make_scene,
     const RunParameters &run, const DiscretizationParameters &method)
   {
-    const bool root = Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) == 0;
-    CsvWriter  table, rates;
-    if (root)
-      {
-        table.open(run.directory + "/convergence.csv",
-                   {"degree", "cells", "dofs", "h", "l2_error", "eoc", "l1_error", "eoc_l1",
-                    "time_steps", "wall_time_s", "time_loop_s", "time_loop_cpu_s"});
-        rates.open(run.directory + "/convergence-rates.csv",
-                   {"degree", "eoc_finest", "eoc_l1_finest"},
-                   "L2 and L1 error rates of the two finest meshes (all components)");
-        std::cout << "  degree    cells       dofs       L2 error     EOC   steps" << std::endl;
-      }
-    JsonObject        errors;
-    const std::string scene_name = make_scene(run.convergence_cells.front()).scene;
-    for (unsigned int i = 0; i < run.convergence_degrees.size(); ++i)
-      {
-        const unsigned int p = run.convergence_degrees[i];
-        double             e_prev = -1, h_prev = -1, eoc = NAN, e1_prev = -1, eoc1 = NAN;
-        const double       exponent = std::max(1., (p + 1.) / 3.) - 1.;
-        const double       h0       = 1. / run.convergence_cells.front();
-        std::vector<double> errs;
-        for (const unsigned int cells : run.convergence_cells)
-          {
-            const auto scene = make_scene(cells);
-            AssertThrow(scene.exact, ExcMessage("no exact solution"));
-            const double factor = std::pow((1. / cells) / h0, exponent);
-            const auto   r = run_simulation(scene, run, method.for_study(run, i), false, factor);
-            eoc = e_prev > 0 ? std::log(e_prev / r.l2_error) / std::log(h_prev / r.h_min) : NAN;
-            eoc1 =
-              e1_prev > 0 ? std::log(e1_prev / r.l1_error) / std::log(h_prev / r.h_min) : NAN;
-            if (root)
-              {
-                table.row({double(p), double(cells), double(r.n_dofs), r.h_min, r.l2_error,
-                           eoc, r.l1_error, eoc1, double(r.n_steps), r.wall_time_s,
-                           r.time_loop_s, r.time_loop_cpu_s});
-                std::cout << std::setw(8) << p << std::setw(9) << cells << std::setw(11)
-                          << r.n_dofs << std::setw(15) << std::scientific
-                          << std::setprecision(4) << r.l2_error << std::defaultfloat
-                          << std::setw(8) << std::fixed << std::setprecision(2) << eoc
-                          << std::defaultfloat << std::setw(8) << r.n_steps << std::endl;
-              }
-            e_prev  = r.l2_error;
-            e1_prev = r.l1_error;
-            h_prev  = r.h_min;
-            errs.push_back(r.l2_error);
-          }
-        if (root)
-          rates.row({double(p), eoc, eoc1});
-        errors.add("degree_" + std::to_string(p) + "_l2_errors", errs);
-      }
-    if (root)
-      {
-        JsonObject summary;
-        summary.add("scene", scene_name);
-        summary.add("mode", "convergence study");
-        summary.add("dim", static_cast<long long>(dim));
-        summary.add("status", "completed");
-        summary.add("cells", std::vector<double>(run.convergence_cells.begin(),
-                                                 run.convergence_cells.end()));
-        summary.add_object("errors", errors);
-        summary.write(run.directory + "/summary.json");
-      }
+    StudyColumns columns;
+    columns.values = {"cells",      "dofs",        "h",           "l2_error",       "l1_error",
+                      "time_steps", "wall_time_s", "time_loop_s", "time_loop_cpu_s"};
+    columns.rated  = {{"l2_error", "eoc"}, {"l1_error", "eoc_l1"}};
+    columns.rates_comment = "L2 and L1 error rates of the two finest meshes (all components)";
+    columns.printed       = {"degree", "cells", "dofs", "l2_error", "eoc", "time_steps"};
+    const double h0       = 1. / run.convergence_cells.front();
+    const auto   one_run  = [&](const unsigned int i, const unsigned int cells) {
+      const auto scene = make_scene(cells);
+      AssertThrow(scene.exact, ExcMessage("no exact solution"));
+      // above degree 2 the time step shrinks as h^((p + 1)/3) so that the
+      // error of SSP-RK3 does not cap the order of the space discretisation
+      const double exponent = std::max(1., (run.convergence_degrees[i] + 1.) / 3.) - 1.;
+      const double factor   = std::pow((1. / cells) / h0, exponent);
+      const auto   r = run_simulation(scene, run, method.for_study(run, i), false, factor);
+      return StudyRow{r.h_min,
+                      {double(cells), double(r.n_dofs), r.h_min, r.l2_error, r.l1_error,
+                       double(r.n_steps), r.wall_time_s, r.time_loop_s, r.time_loop_cpu_s}};
+    };
+    JsonObject summary;
+    summary.add("scene", make_scene(run.convergence_cells.front()).scene);
+    summary.add("mode", "convergence study");
+    summary.add("dim", static_cast<long long>(dim));
+    summary.add("status", "completed");
+    summary.add("cells",
+                std::vector<double>(run.convergence_cells.begin(), run.convergence_cells.end()));
+    granular_dg::run_convergence_study(columns, run, one_run, summary);
   }
 } // namespace granular_dg::dg

@@ -632,11 +632,7 @@ namespace granular_dg::network
     for (const auto &end : owned_ends)
       speed_over_h = std::max(
         speed_over_h, std::abs(lines->flux(end.edge).derivative(u.vertices[end.vertex])) / end.h);
-    const double dt = method.cfl / ranks->max(speed_over_h);
-    if (!(std::isfinite(dt) && dt > 0))
-      throw RunError("time step is " + format_number(dt) + " at t = " + format_number(time) +
-                     " (all characteristic speeds vanish or are not finite)");
-    return dt;
+    return method.time_step(ranks->max(speed_over_h), "t", time);
   }
 
   void

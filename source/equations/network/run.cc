@@ -8,6 +8,7 @@
 #include <deal.II/base/utilities.h>
 #include <deal.II/grid/reference_cell.h>
 
+#include <granular_dg/base/convergence_study.h>
 #include <granular_dg/base/errors.h>
 #include <granular_dg/base/output.h>
 #include <granular_dg/base/time_loop.h>
@@ -15,8 +16,6 @@
 
 #include <cmath>
 #include <fstream>
-#include <iomanip>
-#include <iostream>
 #include <sstream>
 
 namespace granular_dg::network
@@ -200,82 +199,42 @@ namespace granular_dg::network
       const double l = std::log2(cells);
       return std::abs(l - std::round(l)) < 1e-12 ? std::round(l) : l;
     }
-
-    void
-    print_study_row(const std::vector<double> &row)
-    {
-      // level, cells, dofs, steps, L1, EOC, L1 vertex, CPU s
-      std::cout << std::setw(7) << row[1] << std::setw(9) << row[2] << std::setw(10) << row[4]
-                << std::setw(8) << row[6] << std::setw(14) << std::scientific
-                << std::setprecision(5) << row[7] << std::defaultfloat << std::setw(7)
-                << std::fixed << std::setprecision(2) << row[8] << std::defaultfloat
-                << std::setw(12) << std::scientific << std::setprecision(2) << row[10]
-                << std::defaultfloat << std::setw(9) << std::fixed << std::setprecision(2)
-                << row[15] << std::defaultfloat << std::endl;
-    }
   } // namespace
 
   void
   run_network_convergence(const Graph &graph, const std::vector<EdgeData> &data,
                           const dg::DiscretizationParameters &method,
                           const NetworkOptions &options, const ExactSolution &exact,
-                          const RunParameters &params, const std::vector<double> &cfl)
+                          const RunParameters &params)
   {
-    CsvWriter                table, rates;
-    std::vector<std::string> header{"degree", "level", "cells_per_unit_length", "dx", "dofs",
-                                    "cfl", "time_steps", "l1_error", "eoc", "l1_error_edges",
-                                    "l1_error_vertex", "l2_error", "linf_error",
-                                    "mass_balance_residual_max", "mass_step_residual_max",
-                                    "cpu_time_s", "wall_time_s"};
+    StudyColumns columns;
+    columns.values = {"level", "cells_per_unit_length", "dx", "dofs", "cfl", "time_steps",
+                      "l1_error", "l1_error_edges", "l1_error_vertex", "l2_error", "linf_error",
+                      "mass_balance_residual_max", "mass_step_residual_max", "cpu_time_s",
+                      "wall_time_s"};
     for (unsigned int k = 0; k < graph.edges.size(); ++k)
-      header.push_back("l1_error_edge_" + std::to_string(k + 1));
-    rates.open(params.directory + "/convergence-rates.csv", {"degree", "eoc_finest"},
-               "L1 error rate of the two finest meshes");
-    table.open(params.directory + "/convergence.csv", header,
-               "L1 error over all edges and the vertex cell at t = " +
-                 format_number(params.final_time) + " against " + exact.name() +
-                 "; eoc = log2(e(l-1)/e(l)) per level");
-    JsonObject errors;
-    for (unsigned int i = 0; i < params.convergence_degrees.size(); ++i)
-      {
-        dg::DiscretizationParameters d = method;
-        NetworkOptions               o = options;
-        d.degree                       = params.convergence_degrees[i];
-        d.cfl                          = cfl[i];
-        std::cout << "  degree " << d.degree << ", CFL " << format_number(d.cfl) << "\n"
-                  << "  level    cells      dofs   steps      L1 error    EOC   L1 vertex"
-                     "    CPU s"
-                  << std::endl;
-        double              e_prev = -1, h_prev = -1;
-        std::vector<double> errs, eocs;
-        for (const unsigned int cells : params.convergence_cells)
-          {
-            o.cells_per_unit_length = cells;
-            NetworkProblem  p(graph, d, o, data, &exact);
-            const RunResult r   = TimeLoop(p, params, false).run();
-            const auto      e   = p.errors(exact, r.final_time);
-            const double    eoc = e_prev > 0 ? std::log(e_prev / e.l1) /
-                                              std::log(h_prev / p.min_cell_size()) :
-                                            NAN;
-            std::vector<double> row{double(d.degree), level_of(cells), double(cells),
-                                    p.min_cell_size(), double(p.n_dofs()), d.cfl,
-                                    double(r.n_steps), e.l1, eoc, e.l1_edges, e.l1_vertex,
-                                    e.l2, e.linf,
-                                    p.mass_balance().max_residual,
-                                    p.mass_balance().max_step,
-                                    r.time_loop_cpu_s, r.wall_time_s};
-            row.insert(row.end(), e.l1_per_edge.begin(), e.l1_per_edge.end());
-            table.row(row);
-            print_study_row(row);
-            e_prev = e.l1;
-            h_prev = p.min_cell_size();
-            errs.push_back(e.l1);
-            eocs.push_back(eoc);
-          }
-        rates.row({double(d.degree), eocs.back()});
-        errors.add("degree_" + std::to_string(d.degree) + "_l1_errors", errs);
-        errors.add("degree_" + std::to_string(d.degree) + "_eoc", eocs);
-      }
+      columns.values.push_back("l1_error_edge_" + std::to_string(k + 1));
+    columns.rated         = {{"l1_error", "eoc"}};
+    columns.table_comment = "L1 error over all edges and the vertex cell at t = " +
+                            format_number(params.final_time) + " against " + exact.name() +
+                            "; eoc = log2(e(l-1)/e(l)) per level";
+    columns.rates_comment = "L1 error rate of the two finest meshes";
+    columns.printed       = {"degree", "cfl", "level", "dofs", "time_steps", "l1_error", "eoc",
+                             "l1_error_vertex", "cpu_time_s"};
+    const auto one_run = [&](const unsigned int i, const unsigned int cells) {
+      const auto     m        = method.for_study(params, i);
+      NetworkOptions o        = options;
+      o.cells_per_unit_length = cells;
+      NetworkProblem      p(graph, m, o, data, &exact);
+      const RunResult     r = TimeLoop(p, params, false).run();
+      const auto          e = p.errors(exact, r.final_time);
+      std::vector<double> row{level_of(cells), double(cells), p.min_cell_size(),
+                              double(p.n_dofs()), m.cfl, double(r.n_steps), e.l1, e.l1_edges,
+                              e.l1_vertex, e.l2, e.linf, p.mass_balance().max_residual,
+                              p.mass_balance().max_step, r.time_loop_cpu_s, r.wall_time_s};
+      row.insert(row.end(), e.l1_per_edge.begin(), e.l1_per_edge.end());
+      return StudyRow{p.min_cell_size(), row};
+    };
     JsonObject summary;
     summary.add("scene", "network");
     summary.add("mode", "convergence study");
@@ -285,7 +244,6 @@ namespace granular_dg::network
     summary.add("cells_per_unit_length",
                 std::vector<double>(params.convergence_cells.begin(),
                                     params.convergence_cells.end()));
-    summary.add_object("errors", errors);
-    summary.write(params.directory + "/summary.json");
+    run_convergence_study(columns, params, one_run, summary);
   }
 } // namespace granular_dg::network

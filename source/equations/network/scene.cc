@@ -46,8 +46,8 @@ namespace granular_dg::network
     }
 
     /// Everything the network scene reads from the prm file: the graph,
-    /// the data of its edges, the method on it, the vertex value, the exact
-    /// solution and the CFL numbers of a convergence study.
+    /// the data of its edges, the method on it, the vertex value and the
+    /// exact solution.
     struct Case
     {
       void
@@ -59,7 +59,6 @@ namespace granular_dg::network
       NetworkOptions                 options;
       std::string                    exact_name = "none";
       std::shared_ptr<ExactSolution> exact;
-      std::vector<double>            cfl;
 
     private:
       /// Refuse a method the network cannot run, then take it (and the
@@ -330,9 +329,6 @@ namespace granular_dg::network
       // before any edge is discretised (below for initial_data, then by run())
       require_network_fits(*this, common);
       build_exact_solution(common);
-      cfl = common.convergence_cfl;
-      if (cfl.empty())
-        cfl.assign(common.convergence_degrees.size(), method.cfl);
     }
 
     void
@@ -401,7 +397,7 @@ namespace granular_dg::network
       begin_output(common);
       if (common.convergence)
         run_network_convergence(c.input.graph, c.input.data, c.method, c.options, *c.exact,
-                                common, c.cfl);
+                                common);
       else
         run_network(c.input.graph, c.input.data, c.method, c.options, c.exact.get(), common,
                     true);

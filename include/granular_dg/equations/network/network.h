@@ -383,14 +383,14 @@ namespace granular_dg::network
               const RunParameters &params, bool write_files,
               const std::string &scene = "network");
 
-  /// The study of Convergence/degrees x Convergence/cells (cells per unit
-  /// length): L1 error over edges and vertex (and per edge), EOC, steps, CPU
-  /// time, in convergence.csv (and a Table-1-like table on stdout); the EOC
-  /// of the two finest meshes per degree in convergence-rates.csv. cfl[i] is
-  /// the CFL number of degree i of the list.
+  /// The convergence study (run_convergence_study()) of Convergence/degrees x
+  /// Convergence/cells (cells per unit length): L1 error over edges and
+  /// vertex (and per edge), its EOC, steps, CPU time, in convergence.csv (and
+  /// a Table-1-like table on stdout); the EOC of the two finest meshes per
+  /// degree in convergence-rates.csv.
   void
   run_network_convergence(const Graph &graph, const std::vector<EdgeData> &data,
                           const dg::DiscretizationParameters &method,
                           const NetworkOptions &options, const ExactSolution &exact,
-                          const RunParameters &params, const std::vector<double> &cfl);
+                          const RunParameters &params);
 } // namespace granular_dg::network
