@@ -688,6 +688,8 @@ namespace granular_dg::dg
       Coefficients<VA> a, a_next;
       load_batch<nm>(src, c, u, a);
       load_batch<nm>(src, c + 1, v, a_next);
+      VA h_c;
+      h_c.load(&h[c]);
 
       VA res[nc][nm] = {};
       for (unsigned int q = 0; q < nq; ++q)
@@ -708,8 +710,6 @@ namespace granular_dg::dg
               for (unsigned int l = 0; l < W; ++l)
                 x[0][l] = source_points[(c + l) * nq + q][0];
               const auto S = phys.source(U, x, t, a);
-              VA         h_c;
-              h_c.load(&h[c]);
               for (unsigned int i = 0; i < nc; ++i)
                 {
                   const VA ws = h_c * weights[q] * S[i];

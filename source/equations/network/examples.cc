@@ -5,6 +5,7 @@
 
 #include <cmath>
 #include <functional>
+#include <utility>
 
 namespace granular_dg::network
 {
@@ -356,34 +357,35 @@ namespace granular_dg::network
         std::vector<Solution::Vertex>{c1, c2});
       return e;
     }
+
+    /// every example by its name (Network/exact solution)
+    const std::vector<std::pair<std::string, Example (*)()>> &
+    examples()
+    {
+      static const std::vector<std::pair<std::string, Example (*)()>> table{
+        {"example_7_1", example_7_1},     {"example_7_2", example_7_2},
+        {"example_7_3", example_7_3},     {"example_7_4", example_7_4},
+        {"example_7_5", example_7_5},     {"smooth_linear", smooth_linear},
+        {"two_stars", two_stars},         {"smooth_two_vertices", smooth_two_vertices}};
+      return table;
+    }
   } // namespace
 
   std::vector<std::string>
   example_names()
   {
-    return {"example_7_1", "example_7_2", "example_7_3", "example_7_4", "example_7_5",
-            "smooth_linear", "two_stars", "smooth_two_vertices"};
+    std::vector<std::string> names;
+    for (const auto &e : examples())
+      names.push_back(e.first);
+    return names;
   }
 
   Example
   make_example(const std::string &name)
   {
-    if (name == "example_7_1")
-      return example_7_1();
-    if (name == "example_7_2")
-      return example_7_2();
-    if (name == "example_7_3")
-      return example_7_3();
-    if (name == "example_7_4")
-      return example_7_4();
-    if (name == "example_7_5")
-      return example_7_5();
-    if (name == "smooth_linear")
-      return smooth_linear();
-    if (name == "two_stars")
-      return two_stars();
-    if (name == "smooth_two_vertices")
-      return smooth_two_vertices();
+    for (const auto &[n, make] : examples())
+      if (n == name)
+        return make();
     AssertThrow(false, ExcMessage("unknown example " + name));
     return {};
   }
