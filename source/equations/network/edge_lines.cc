@@ -168,11 +168,10 @@ namespace granular_dg::network
     unsigned int c      = 0;
     if (W > 1 && !blending)
       {
-        // SIMD batches; the last one may end the edge when the array goes on
-        // (its last lane reads the next edge's first cell, and takes the
-        // flux through the edge's end instead)
-        const bool more = e + 1 < n_edges();
-        for (; c + W < n || (more && c + W == n); c += W)
+        // SIMD batches, the last one ending the edge where it fits (its last
+        // lane takes the flux through the edge's end): every edge alike,
+        // whichever rank it lies on and wherever in the rank's array
+        for (; c + W <= n; c += W)
           rate_batch<nm>(src, e, c, law, F_left, out);
         if (c == n)
           return;
@@ -222,9 +221,10 @@ namespace granular_dg::network
 
   /// The cells [c, c + W) of edge e as one SIMD batch: dg::LineOperator::
   /// apply_batch(). F_left: the flux through the batch's left face on entry,
-  /// through its right face on return. The cell after the batch is read
-  /// (it exists: on the edge, or the next edge's first cell when the batch
-  /// ends the edge, whose end face then takes the outer state).
+  /// through its right face on return. The cell after the batch is read: on
+  /// the edge, or when the batch ends the edge the next edge's first cell
+  /// (after the rank's last edge a cell of zeros), whose face then takes the
+  /// flux through the edge's end instead.
   template <unsigned int nm, typename Out>
   void
   EdgeLines::rate_batch(const double *src, const unsigned int e, const unsigned int c,
@@ -233,7 +233,14 @@ namespace granular_dg::network
     constexpr unsigned int nq = nm + 1;
     VA                     u[nm], v[nm];
     load_cell_major<nm>(src + index(e, c), u);
-    load_cell_major<nm>(src + index(e, c + 1), v);
+    if (c + W == cells[e] && e + 1 == n_edges())
+      {
+        double next[W * nm] = {};
+        std::copy(src + index(e, c + 1), src + index(e, c + W), next);
+        load_cell_major<nm>(next, v);
+      }
+    else
+      load_cell_major<nm>(src + index(e, c + 1), v);
     VA res[nm] = {};
     for (unsigned int q = 0; nm > 1 && q < nq; ++q)
       {
