@@ -1,7 +1,8 @@
 /**
  * The network's output (solution-NNNN.vtu through deal.II's DataOutBase with
- * every edge drawn in the plane, profile-NNNN-edge-K.csv), a single run on
- * the TimeLoop, and the convergence study.
+ * every edge drawn in the plane, under MPI one piece per rank and a .pvtu;
+ * profile-NNNN-edge-K.csv), a single run on the TimeLoop, and the
+ * convergence study.
  */
 
 #include <deal.II/base/data_out_base.h>
@@ -52,11 +53,24 @@ namespace granular_dg::network
         }
       return patch;
     }
+
+    /// the names of the VTU fields (u, its flux, the coordinate along the
+    /// edge, the edge's number: 0 for a vertex)
+    const std::vector<std::string> vtu_fields{"u", "flux", "x_edge", "edge"};
+
+    DataOutBase::VtkFlags
+    vtu_flags(const double time, const unsigned int index)
+    {
+      DataOutBase::VtkFlags flags(time, index);
+      flags.print_date_and_time = false;
+      flags.compression_level   = DataOutBase::VtkFlags::best_speed;
+      return flags;
+    }
   } // namespace
 
-  std::string
-  NetworkProblem::write_vtu(const std::string &directory, const unsigned int index,
-                            const double time, Samples samples,
+  void
+  NetworkProblem::write_vtu(const std::string &directory, const std::string &name,
+                            const unsigned int index, const double time, Samples samples,
                             const std::vector<double> &vertices) const
   {
     // one patch per edge through all its sample points (the points of a
@@ -64,7 +78,6 @@ namespace granular_dg::network
     // of length 0 there)
     const GraphDrawing embed(net);
     std::vector<DataOutBase::Patch<1, 2>> patches;
-    patches.reserve(samples.size() + net.vertices.size());
     std::vector<Point<2>>              points;
     std::vector<std::array<double, 4>> values;
     for (unsigned int k = 0; k < samples.size(); ++k)
@@ -82,22 +95,18 @@ namespace granular_dg::network
         // (the samples of an edge are in its patch now)
         Samples::value_type().swap(samples[k]);
       }
-    // every vertex: a patch of length 0 with its value (edge number 0)
+    // every vertex this rank reports: a patch of length 0 with its value
+    // (edge number 0)
     for (unsigned int v = 0; v < net.vertices.size(); ++v)
-      {
-        const Point<2> &p = embed.vertex(v);
-        patches.push_back(line_patch({p, p},
-                                     {{{vertices[v], 0., 0., 0.}}, {{vertices[v], 0., 0., 0.}}},
-                                     patches.size()));
-      }
-    DataOutBase::VtkFlags flags(time, index);
-    flags.print_date_and_time = false;
-    flags.compression_level   = DataOutBase::VtkFlags::best_speed;
-    const std::string name    = snapshot_name("solution-", index, ".vtu");
-    std::ofstream     out(directory + "/" + name);
-    DataOutBase::write_vtu(patches, {"u", "flux", "x_edge", "edge"}, {}, flags, out);
-    record_output_file(directory, name);
-    return name;
+      if (ranks->reports_vertex(v))
+        {
+          const Point<2> &p = embed.vertex(v);
+          patches.push_back(line_patch({p, p},
+                                       {{{vertices[v], 0., 0., 0.}}, {{vertices[v], 0., 0., 0.}}},
+                                       patches.size()));
+        }
+    std::ofstream out(directory + "/" + name);
+    DataOutBase::write_vtu(patches, vtu_fields, {}, vtu_flags(time, index), out);
   }
 
   void
@@ -157,25 +166,49 @@ namespace granular_dg::network
   NetworkProblem::write_snapshot(const std::string &directory, const unsigned int index,
                                  const double time)
   {
-    // gathered on rank 0, which writes the files (once when the VTU and the
-    // profiles sample alike)
+    // the profiles gathered on rank 0, which writes them; the VTU in one
+    // file on one rank (from the same samples when the profiles sample
+    // alike), else in one piece per rank and a .pvtu record by rank 0
     const auto vertices = vertex_values();
     const bool vtu = options.write_vtu, profiles = options.profiles != Profiles::none;
-    Samples    vtu_samples = vtu ? gathered_sample(vtu_points()) : Samples();
+    const bool one_file = vtu && !ranks->parallel();
+    Samples    vtu_samples = vtu ? sample(vtu_points()) : Samples();
     if (profiles)
       {
-        const bool same = vtu && vtu_points() == profile_points();
+        const bool    same  = one_file && vtu_points() == profile_points();
         const Samples other = same ? Samples() : gathered_sample(profile_points());
         if (ranks->rank() == 0)
           write_profiles(directory, index, time, same ? vtu_samples : other, vertices);
       }
     SnapshotFiles files;
-    if (vtu)
-      files.pvd_entry = files.main_file = snapshot_name("solution-", index, ".vtu");
-    if (ranks->rank() == 0 && vtu)
-      write_vtu(directory, index, time, std::move(vtu_samples), vertices);
-    if (files.main_file.empty())
-      files.main_file = "profile files";
+    files.main_file = "profile files";
+    if (!vtu)
+      return files;
+    const std::string base = snapshot_name("solution-", index, "");
+    if (one_file)
+      {
+        write_vtu(directory, base + ".vtu", index, time, std::move(vtu_samples), vertices);
+        record_output_file(directory, base + ".vtu");
+        files.pvd_entry = files.main_file = base + ".vtu";
+        return files;
+      }
+    const auto piece = [&](const unsigned int r) {
+      return base + "." + Utilities::int_to_string(r, 4) + ".vtu";
+    };
+    write_vtu(directory, piece(ranks->rank()), index, time, std::move(vtu_samples), vertices);
+    if (ranks->rank() == 0)
+      {
+        std::vector<std::string> pieces;
+        for (unsigned int r = 0; r < ranks->n_ranks(); ++r)
+          {
+            pieces.push_back(piece(r));
+            record_output_file(directory, pieces.back());
+          }
+        std::ofstream out(directory + "/" + base + ".pvtu");
+        DataOutBase::write_pvtu_record(out, pieces, vtu_fields, {}, vtu_flags(time, index));
+        record_output_file(directory, base + ".pvtu");
+      }
+    files.pvd_entry = files.main_file = base + ".pvtu";
     return files;
   }
 

@@ -166,8 +166,9 @@ namespace granular_dg::network
     /// per edge the graph, its data functions and the partition (one cell per
     /// edge, degree 0); per cell and mode the state, the Runge-Kutta stage and
     /// the last good state, and a checkpoint's gathered copy (16 cells per
-    /// edge, degrees 0 and 2); per sample point of a snapshot on rank 0 the
-    /// gathered samples and the VTU's patches and buffers, or the profiles.
+    /// edge, degrees 0 and 2); per sample point of a snapshot the samples,
+    /// patches and buffers of a rank's VTU piece, and the profiles of the
+    /// whole network gathered on rank 0.
     constexpr double bytes_per_edge          = 1.1e3;
     constexpr double bytes_per_cell          = 2.;
     constexpr double bytes_per_mode          = 52.;
@@ -188,11 +189,12 @@ namespace granular_dg::network
 
     /// An InputError when the network needs more memory than this MPI rank
     /// has (available_memory_per_rank()), refused before anything is
-    /// allocated as the other scenes' meshes are: the edges and cells of a
-    /// rank (at least the longest edge: the partition keeps edges whole) and,
-    /// on rank 0, a snapshot of the whole network. It names the number of
-    /// cells per unit length (of a convergence study: Convergence/cells), or
-    /// the graph file when its edges take most of the memory.
+    /// allocated as the other scenes' meshes are: the edges, cells and VTU
+    /// piece of a rank (at least the longest edge: the partition keeps edges
+    /// whole) and, on rank 0, the profiles of the whole network. It names
+    /// the number of cells per unit length (of a convergence study:
+    /// Convergence/cells), or the graph file when its edges take most of the
+    /// memory.
     void
     require_network_fits(const Case &c, const RunParameters &common)
     {
@@ -213,17 +215,18 @@ namespace granular_dg::network
                              1.;
       const double per_cell   = bytes_per_cell + bytes_per_mode * (degree + 1);
       const double edge_bytes = std::ceil(n.size() / ranks) * bytes_per_edge;
-      const double cell_bytes =
-        std::max(total / ranks, *std::max_element(n.begin(), n.end())) * per_cell;
+      const double rank_cells = std::max(total / ranks, *std::max_element(n.begin(), n.end()));
+      const double cell_bytes = rank_cells * per_cell;
       const bool   snapshots  = !study && !common.benchmark.enabled &&
                              (c.options.write_vtu || c.options.profiles != Profiles::none);
       const double points     = c.method.profile_points > 0 ? std::max(2u, c.method.profile_points) :
                                                             std::max(2u, degree + 1);
       const double snapshot_bytes =
         !snapshots ? 0. :
-                     total * points *
-                       ((c.options.write_vtu ? vtu_bytes_per_point : 0.) +
-                        (c.options.profiles != Profiles::none ? profile_bytes_per_point : 0.));
+                     points * ((c.options.write_vtu ? rank_cells * vtu_bytes_per_point : 0.) +
+                               (c.options.profiles != Profiles::none ?
+                                  total * profile_bytes_per_point :
+                                  0.));
       const double needed = edge_bytes + cell_bytes + snapshot_bytes;
       // the smallest over the ranks: they all refuse, or none
       const double available = Utilities::MPI::job_supports_mpi() ?

@@ -296,13 +296,14 @@ namespace granular_dg::network
       return method.profile_points > 0 ? method.profile_points :
                                          std::max(2u, method.degree + 1);
     }
-    /// rank 0: the files of a snapshot from the gathered samples and vertex
-    /// values (write_vtu releases the samples of each edge once they are in
-    /// its patch)
-    void   write_profiles(const std::string &directory, unsigned int index, double t,
-                          const Samples &profile, const std::vector<double> &vertices) const;
-    std::string write_vtu(const std::string &directory, unsigned int index, double t,
-                          Samples samples, const std::vector<double> &vertices) const;
+    /// rank 0: the profiles of a snapshot from the gathered samples
+    void write_profiles(const std::string &directory, unsigned int index, double t,
+                        const Samples &profile, const std::vector<double> &vertices) const;
+    /// The VTU file `name` of the edges with samples and of the vertices
+    /// this rank reports (releasing the samples of each edge once they are
+    /// in its patch).
+    void write_vtu(const std::string &directory, const std::string &name, unsigned int index,
+                   double t, Samples samples, const std::vector<double> &vertices) const;
     /// What a checkpoint holds (the modes of every edge, the vertex values,
     /// the far-end inflow and the diagnostics), written and read alike.
     template <typename Archive>
