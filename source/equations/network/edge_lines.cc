@@ -171,8 +171,11 @@ namespace granular_dg::network
         // SIMD batches, the last one ending the edge where it fits (its last
         // lane takes the flux through the edge's end): every edge alike,
         // whichever rank it lies on and wherever in the rank's array
+        const bool last = e + 1 == n_edges();
         for (; c + W <= n; c += W)
-          rate_batch<nm>(src, e, c, law, F_left, out);
+          rate_batch<nm>(src, e, c,
+                         last && c + W == n ? last_cells(src, e, c) : src + index(e, c + 1),
+                         law, F_left, out);
         if (c == n)
           return;
         if (c != 0)
@@ -219,28 +222,32 @@ namespace granular_dg::network
       }
   }
 
+  /// The cells c + 1 .. c + W - 1 of the rank's last edge e and a cell of
+  /// zeros after them (the cells rate_batch() reads as `next`).
+  const double *
+  EdgeLines::last_cells(const double *src, const unsigned int e, const unsigned int c) const
+  {
+    after_last.assign(W * modes, 0.);
+    std::copy(src + index(e, c + 1), src + index(e, c + W), after_last.begin());
+    return after_last.data();
+  }
+
   /// The cells [c, c + W) of edge e as one SIMD batch: dg::LineOperator::
   /// apply_batch(). F_left: the flux through the batch's left face on entry,
-  /// through its right face on return. The cell after the batch is read: on
-  /// the edge, or when the batch ends the edge the next edge's first cell
-  /// (after the rank's last edge a cell of zeros), whose face then takes the
-  /// flux through the edge's end instead.
+  /// through its right face on return. next: the cells c + 1 .. c + W, when
+  /// the batch ends the edge the next edge's first cell last (after the
+  /// rank's last edge a cell of zeros, last_cells()), whose face then takes
+  /// the flux through the edge's end instead.
   template <unsigned int nm, typename Out>
   void
   EdgeLines::rate_batch(const double *src, const unsigned int e, const unsigned int c,
-                        const Law &law, double &F_left, const Out &out) const
+                        const double *next, const Law &law, double &F_left,
+                        const Out &out) const
   {
     constexpr unsigned int nq = nm + 1;
     VA                     u[nm], v[nm];
     load_cell_major<nm>(src + index(e, c), u);
-    if (c + W == cells[e] && e + 1 == n_edges())
-      {
-        double next[W * nm] = {};
-        std::copy(src + index(e, c + 1), src + index(e, c + W), next);
-        load_cell_major<nm>(next, v);
-      }
-    else
-      load_cell_major<nm>(src + index(e, c + 1), v);
+    load_cell_major<nm>(next, v);
     VA res[nm] = {};
     for (unsigned int q = 0; nm > 1 && q < nq; ++q)
       {

@@ -118,8 +118,9 @@ namespace granular_dg::network
     template <unsigned int nm, typename Out>
     void rate_edge(const double *src, unsigned int e, const Out &out) const;
     template <unsigned int nm, typename Out>
-    void rate_batch(const double *src, unsigned int e, unsigned int c, const Law &law,
-                    double &F_left, const Out &out) const;
+    void rate_batch(const double *src, unsigned int e, unsigned int c, const double *next,
+                    const Law &law, double &F_left, const Out &out) const;
+    const double *last_cells(const double *src, unsigned int e, unsigned int c) const;
     template <unsigned int nm>
     void subcell_rate(const double *u, unsigned int e, const Law &law, double F_left,
                       double F_right, double (&fv)[nm]) const;
@@ -162,5 +163,7 @@ namespace granular_dg::network
     /// the limiter's per-cell flags of one edge (indicators that look at
     /// the neighbours)
     mutable std::vector<unsigned char> flags, examined;
+    /// the rank's last W - 1 cells and a cell of zeros (last_cells())
+    mutable std::vector<double>    after_last;
   };
 } // namespace granular_dg::network
