@@ -234,10 +234,10 @@ namespace granular_dg::network
 
   /// The cells [c, c + W) of edge e as one SIMD batch: dg::LineOperator::
   /// apply_batch(). F_left: the flux through the batch's left face on entry,
-  /// through its right face on return. next: the cells c + 1 .. c + W, when
-  /// the batch ends the edge the next edge's first cell last (after the
-  /// rank's last edge a cell of zeros, last_cells()), whose face then takes
-  /// the flux through the edge's end instead.
+  /// through its right face on return. next: the cells c + 1 .. c + W; when
+  /// the batch ends the edge, the last of them is the next edge's first cell
+  /// (after the rank's last edge a cell of zeros, last_cells()), and the face
+  /// to it takes the flux through the edge's end instead.
   template <unsigned int nm, typename Out>
   void
   EdgeLines::rate_batch(const double *src, const unsigned int e, const unsigned int c,
