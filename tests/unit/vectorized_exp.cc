@@ -10,7 +10,8 @@
 // lane, at the native width, 4 and 1, against std::isfinite and > 0.
 // And shift_lanes up and down (a lane permute at the native
 // width) against the lane-by-lane shift, and cell_major_batch,
-// for_cell_major_batches and load_cell_major (masked permutes at width 8)
+// for_cell_major_batches, store_cell_major and load_cell_major (masked
+// permutes at width 8)
 // against the cell-after-cell layout, for 1-10 values per cell, at the
 // native width, 4, 2 and 1.
 #include <deal.II/base/vectorization.h>
@@ -124,6 +125,11 @@ namespace
       for (unsigned int e = 0; e < width; ++e)
         ok = ok && b[e] == x[(j * width + e) % n][(j * width + e) / n];
     });
+    // the layout stored: store_cell_major()
+    double out[width * n];
+    granular_dg::store_cell_major(x, out);
+    for (unsigned int f = 0; f < width * n; ++f)
+      ok = ok && out[f] == x[f % n][f / n];
     // and back: load_cell_major()
     double in[width * n];
     for (unsigned int f = 0; f < width * n; ++f)
@@ -181,7 +187,8 @@ main()
   const auto values = std::make_integer_sequence<unsigned int, 10>();
   const bool cells  = cell_major_agrees_for<W>(values) && cell_major_agrees_for<4>(values) &&
                      cell_major_agrees_for<2>(values) && cell_major_agrees_for<1>(values);
-  std::printf("cell_major_batch, load_cell_major: the cell-after-cell layout (1-10 values): %s\n",
+  std::printf("cell_major_batch, store_cell_major, load_cell_major: the cell-after-cell "
+              "layout (1-10 values): %s\n",
               cells ? "yes" : "NO");
   return wide <= 2. && unit <= 2. && same && special && lanes && shift && cells ? 0 : 1;
 }

@@ -261,13 +261,19 @@ namespace granular_dg
   }
 
   /// out[l n + k] = x[k][l]: the n values of `width` cells stored cell after
-  /// cell (deal.II's vectorized_transpose_and_store() for consecutive cells).
+  /// cell (deal.II's vectorized_transpose_and_store() for consecutive cells),
+  /// on AVX-512 batch by batch from cell_major_batch().
   template <unsigned int n, std::size_t width>
   DEAL_II_ALWAYS_INLINE inline void
   store_cell_major(const dealii::VectorizedArray<double, width> (&x)[n], double *out)
   {
     if constexpr (n == 1)
       x[0].store(out);
+#if DEAL_II_VECTORIZATION_WIDTH_IN_BITS >= 512 && defined(__AVX512F__)
+    else if constexpr (width == 8)
+      for (unsigned int j = 0; j < n; ++j)
+        cell_major_batch(x, j).store(out + 8 * j);
+#endif
     else
       {
         unsigned int offsets[width];

@@ -301,9 +301,7 @@ namespace granular_dg::dg
       void
       cells(const std::size_t i, const VA (&rate)[n]) const
       {
-        for_cell_major_batches(rate, [&](const unsigned int j, const VA &r) {
-          r.store(dst + i + j * VA::size());
-        });
+        store_cell_major(rate, dst + i);
       }
     };
     /// cells per SIMD batch of apply_range() (the native width of the SIMD
