@@ -67,54 +67,74 @@ namespace granular_dg::network
       integrate_moments(g, legendre, quad, x0, h, mid, b, result, depth + 1);
     }
 
-    /// [min, max] of the finite values v (in SIMD lanes: the same bounds as a
-    /// scalar scan, min and max being exact in any order)
-    std::pair<double, double>
-    value_range(const std::vector<double> &v)
+    /// One SIMD pass over v: whether every entry is finite (x - x is 0 for a
+    /// finite x and NaN otherwise, and a NaN stays in a sum), and with
+    /// `range` [min, max] of the entries when they are (min and max are
+    /// exact in any order)
+    struct Scan
     {
-      using VA           = VectorizedArray<double>;
-      constexpr auto W   = VA::size();
-      VA             lo  = INFINITY, hi = -INFINITY;
-      std::size_t    i   = 0;
-      for (; i + W <= v.size(); i += W)
-        {
-          VA x;
-          x.load(v.data() + i);
-          lo = std::min(lo, x);
-          hi = std::max(hi, x);
-        }
-      double a = INFINITY, b = -INFINITY;
-      for (unsigned int l = 0; l < W; ++l)
-        {
-          a = std::min(a, lo[l]);
-          b = std::max(b, hi[l]);
-        }
-      for (; i < v.size(); ++i)
-        {
-          a = std::min(a, v[i]);
-          b = std::max(b, v[i]);
-        }
-      return {a, b};
-    }
+      bool   finite;
+      double lo, hi;
+    };
 
-    /// whether every entry of v is finite: x - x is 0 for a finite x and NaN
-    /// otherwise, and a NaN stays in a sum (SIMD batches, no branch per entry)
-    bool
-    all_finite(const std::vector<double> &v)
+    template <bool range>
+    Scan
+    scan(const std::vector<double> &v)
     {
-      using VA      = VectorizedArray<double>;
-      VA          sum = 0.;
-      std::size_t i   = 0;
+      using VA       = VectorizedArray<double>;
+      VA          lo = INFINITY, hi = -INFINITY, sum = 0.;
+      std::size_t i  = 0;
       for (; i + VA::size() <= v.size(); i += VA::size())
         {
           VA x;
           x.load(v.data() + i);
           sum += x - x;
+          if constexpr (range)
+            {
+              lo = std::min(lo, x);
+              hi = std::max(hi, x);
+            }
         }
-      double rest = 0.;
+      Scan result{granular_dg::all_finite(sum), INFINITY, -INFINITY};
+      for (unsigned int l = 0; l < VA::size(); ++l)
+        {
+          result.lo = std::min(result.lo, lo[l]);
+          result.hi = std::max(result.hi, hi[l]);
+        }
       for (; i < v.size(); ++i)
-        rest += v[i] - v[i];
-      return granular_dg::all_finite(sum) && std::isfinite(rest);
+        {
+          result.finite = result.finite && std::isfinite(v[i]);
+          result.lo     = std::min(result.lo, v[i]);
+          result.hi     = std::max(result.hi, v[i]);
+        }
+      return result;
+    }
+
+    /// The sum of the n cell means of an edge (at mean[c * stride]) and their
+    /// total variation, each over 8 interleaved partial sums (cell c in sum
+    /// c % 8: no long chain of dependent additions) added pairwise. Written
+    /// in blocks of 8 so that the partial sums stay in registers.
+    std::array<double, 2>
+    edge_sums(const double *mean, const unsigned int stride, const unsigned int n)
+    {
+      constexpr unsigned int L      = 8;
+      double                 sum[L] = {}, tv[L] = {};
+      const auto             add    = [&](const unsigned int c, const unsigned int l) {
+        sum[l] += mean[c * stride];
+        if (c + 1 < n)
+          tv[l] += std::abs(mean[(c + 1) * stride] - mean[c * stride]);
+      };
+      unsigned int c = 0;
+      for (; c + L <= n; c += L)
+        for (unsigned int l = 0; l < L; ++l)
+          add(c + l, l);
+      for (unsigned int l = 0; l < L; ++l)
+        if (c + l < n)
+          add(c + l, l);
+      const auto pairwise = [](const double(&x)[L]) {
+        return ((x[0] + x[1]) + (x[2] + x[3])) + ((x[4] + x[5]) + (x[6] + x[7]));
+      };
+      return {{pairwise(sum), pairwise(tv)}};
     }
   } // namespace
 
@@ -520,9 +540,9 @@ namespace granular_dg::network
         lo = std::min(lo, u.vertices[v]);
         hi = std::max(hi, u.vertices[v]);
       }
-    const auto [lo_edges, hi_edges] = value_range(u.edges);
-    lo = std::min(lo, lo_edges);
-    hi = std::max(hi, hi_edges);
+    const Scan edges = scan<true>(u.edges);
+    lo               = std::min(lo, edges.lo);
+    hi               = std::max(hi, edges.hi);
     for (const auto &[k, side] : data_faces)
       for (const double s : {time, time + 0.5 * dt, time + dt})
         {
@@ -535,12 +555,13 @@ namespace granular_dg::network
   }
 
   void
-  NetworkProblem::check_maximum_principle(const NetworkState &s, const double stage_time)
+  NetworkProblem::check_maximum_principle(const NetworkState &s, const double stage_time,
+                                          const double lo_s, const double hi_s)
   {
     const auto [lo, hi] = bounds;
     const double tol    = 1e-12 * (hi - lo + std::max(std::abs(lo), std::abs(hi)));
-    // (degree 0: the array holds the means only) the cell to report, if any
-    const auto [lo_s, hi_s] = value_range(s.edges);
+    // [lo_s, hi_s]: the range of s.edges (degree 0: the means only); else
+    // the cell to report
     if (lo_s >= lo - tol && hi_s <= hi + tol)
       return;
     for (const unsigned int k : ranks->edges())
@@ -620,13 +641,10 @@ namespace granular_dg::network
       if (!std::isfinite(s.vertices[v]))
         throw failure(stage_time, -1 - int(v), 0., s.vertices[v], "vertex value is not finite");
     // (non-finite values fail this test too, and are reported as such below)
-    const bool finite = all_finite(s.edges);
-    if (principle)
-      {
-        if (finite)
-          check_maximum_principle(s, stage_time);
-      }
-    if (!finite)
+    const Scan edges = principle ? scan<true>(s.edges) : scan<false>(s.edges);
+    if (principle && edges.finite)
+      check_maximum_principle(s, stage_time, edges.lo, edges.hi);
+    if (!edges.finite)
       // report the first cell whose modes are not finite
       for (const unsigned int k : ranks->edges())
         for (unsigned int c = 0; c < edge_cells[k]; ++c)
@@ -721,22 +739,18 @@ namespace granular_dg::network
   std::array<double, 2>
   NetworkProblem::local_sums() const
   {
-    // mass: the vertices' part, then each edge's sum (as its own integral);
-    // TV: the jumps along the edges, then those at the vertices
+    // mass: the vertices' part, then each edge's (h times its sum of
+    // means); TV: the jumps along each edge, then those at the vertices
     double m = 0, tv = 0;
     for (const unsigned int v : ranks->vertices())
       if (ranks->reports_vertex(v))
         m += junctions[v].width() * u.vertices[v];
-    const unsigned int n = lines->n_modes();
     for (const unsigned int k : ranks->edges())
       {
-        const double *mean      = u.edges.data() + lines->index(local(k), 0);
-        double        edge_mass = 0;
-        for (unsigned int c = 0; c < edge_cells[k]; ++c)
-          edge_mass += edge_h[k] * mean[c * n];
-        m += edge_mass;
-        for (unsigned int c = 0; c + 1 < edge_cells[k]; ++c)
-          tv += std::abs(mean[(c + 1) * n] - mean[c * n]);
+        const auto [sum, variation] =
+          edge_sums(u.edges.data() + lines->index(local(k), 0), lines->n_modes(), edge_cells[k]);
+        m += edge_h[k] * sum;
+        tv += variation;
       }
     for (const auto &end : owned_ends)
       tv += std::abs(u.vertices[end.vertex] - u.edges[end.cell]);

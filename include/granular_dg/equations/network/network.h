@@ -268,8 +268,10 @@ namespace granular_dg::network
     /// and the free ends' Dirichlet data of the step from t to t + dt.
     std::pair<double, double> range_of_step(double t, double dt) const;
     /// Degree 0: Inadmissible unless every cell average of s lies in the
-    /// step's range (widened by the stage's vertex values).
-    void check_maximum_principle(const NetworkState &s, double stage_time);
+    /// step's range (widened by the stage's vertex values); [lo_s, hi_s]:
+    /// the range of the cell averages of s.
+    void check_maximum_principle(const NetworkState &s, double stage_time, double lo_s,
+                                 double hi_s);
     /// where: an edge k >= 0 at x, or vertex -1 - k
     Inadmissible failure(double time, int edge, double x, double value,
                          const std::string &reason) const;
