@@ -361,34 +361,45 @@ namespace granular_dg::network
     });
   }
 
-  /// dg::LineOperator::max_speed_impl() on edge e: the largest speed of a
-  /// cell divided once by h, in SIMD batches of cells (into lanes) and cell
-  /// by cell for the rest (into result)
+  /// dg::LineOperator::max_speed_impl() on edge e: the largest speed of its
+  /// cells (SIMD batches into lanes, the rest into result), divided by h
+  /// once per edge (division by h > 0 is monotone: the same maximum as
+  /// dividing every cell's speed)
   template <unsigned int nm>
   void
   EdgeLines::max_speed_edge(const double *src, const unsigned int e, VA &lanes,
                             double &result) const
   {
-    const FluxFunction f = laws[e];
-    const auto         cell_value = [&](const auto *u, const auto &h_c) {
-      using Number    = std::remove_cv_t<std::remove_reference_t<decltype(h_c)>>;
+    const FluxFunction f          = laws[e];
+    const auto         cell_speed = [&](const auto *u) {
+      using Number    = std::remove_cv_t<std::remove_pointer_t<decltype(u)>>;
       // (degree 0: every point has the cell's value)
       Number cell_max = 0.;
       for (unsigned int q = 0; q < (nm > 1 ? nm + 1 : 1); ++q)
         cell_max = std::max(cell_max, std::max(std::abs(f.derivative(
                                                  point_state<nm>(u, basis[q]))),
                                                Number(0.)));
-      return cell_max / h_c;
+      return cell_max;
     };
     unsigned int c = 0;
-    for (; W > 1 && c + W <= cells[e]; c += W)
+    if (W > 1 && cells[e] >= W)
       {
-        VA u[nm];
-        load_cell_major<nm>(src + index(e, c), u);
-        lanes = std::max(lanes, cell_value(u, VA(h[e])));
+        VA edge_lanes = 0.;
+        for (; c + W <= cells[e]; c += W)
+          {
+            VA u[nm];
+            load_cell_major<nm>(src + index(e, c), u);
+            edge_lanes = std::max(edge_lanes, cell_speed(u));
+          }
+        lanes = std::max(lanes, edge_lanes / VA(h[e]));
       }
-    for (; c < cells[e]; ++c)
-      result = std::max(result, cell_value(src + index(e, c), h[e]));
+    if (c < cells[e])
+      {
+        double rest = 0.;
+        for (; c < cells[e]; ++c)
+          rest = std::max(rest, cell_speed(src + index(e, c)));
+        result = std::max(result, rest / h[e]);
+      }
   }
 
   // ---------------------------------------------------------------- the limiter
