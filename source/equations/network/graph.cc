@@ -292,7 +292,7 @@ namespace granular_dg::network
   }
 
   std::vector<double>
-  Junction::end_fluxes(const std::vector<double> &traces, const double u0) const
+  Junction::end_fluxes(const double *traces, const double u0) const
   {
     std::vector<double> F(end_list.size());
     for (unsigned int i = 0; i < end_list.size(); ++i)
@@ -305,7 +305,7 @@ namespace granular_dg::network
   }
 
   double
-  Junction::net_outflow(const std::vector<double> &traces, const double u0) const
+  Junction::net_outflow(const double *traces, const double u0) const
   {
     // end_fluxes() summed without a vector (a stage calls this once per vertex)
     double sum = 0;
@@ -316,17 +316,18 @@ namespace granular_dg::network
   }
 
   double
-  Junction::rate(const std::vector<double> &traces, const double u0) const
+  Junction::rate(const double *traces, const double u0) const
   {
     return dx0 > 0 ? -net_outflow(traces, u0) / dx0 : 0.;
   }
 
   double
-  Junction::balance(const std::vector<double> &traces, const double t) const
+  Junction::balance(const double *traces, const double t) const
   {
     // net_outflow is nondecreasing in u0: bracket a sign change, then bisect
-    double lo = traces.empty() ? 0. : *std::min_element(traces.begin(), traces.end());
-    double hi = traces.empty() ? 0. : *std::max_element(traces.begin(), traces.end());
+    const double *end = traces + end_list.size();
+    double        lo  = end_list.empty() ? 0. : *std::min_element(traces, end);
+    double        hi  = end_list.empty() ? 0. : *std::max_element(traces, end);
     double width = std::max(1., hi - lo);
     lo -= 1e-3 * width;
     hi += 1e-3 * width;

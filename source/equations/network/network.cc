@@ -136,6 +136,35 @@ namespace granular_dg::network
       };
       return {{pairwise(sum), pairwise(tv)}};
     }
+
+#if DEAL_II_VECTORIZATION_WIDTH_IN_BITS >= 512 && defined(__AVX512F__)
+    /// edge_sums() at stride 1 (degree 0), the partial sums in the lanes of
+    /// one register each: the same additions in the same order, so the same
+    /// result to the bit. Masked loads end the edge.
+    std::array<double, 2>
+    edge_sums(const double *mean, const unsigned int n)
+    {
+      const auto    first = [](const unsigned int k) { return __mmask8(k >= 8 ? 0xff : (1u << k) - 1); };
+      const __m512d sign  = _mm512_set1_pd(-0.);
+      __m512d       sum = _mm512_setzero_pd(), tv = _mm512_setzero_pd();
+      for (unsigned int c = 0; c < n; c += 8)
+        {
+          // lane l: cell c + l and the jump from it to c + l + 1
+          const __mmask8 cells = first(n - c), jumps = first(n - c - 1);
+          const __m512d  x     = _mm512_maskz_loadu_pd(cells, mean + c);
+          const __m512d  next  = _mm512_maskz_loadu_pd(jumps, mean + c + 1);
+          sum = _mm512_mask_add_pd(sum, cells, sum, x);
+          tv  = _mm512_mask_add_pd(tv, jumps, tv, _mm512_andnot_pd(sign, _mm512_sub_pd(next, x)));
+        }
+      double s[8], t[8];
+      _mm512_storeu_pd(s, sum);
+      _mm512_storeu_pd(t, tv);
+      const auto pairwise = [](const double(&x)[8]) {
+        return ((x[0] + x[1]) + (x[2] + x[3])) + ((x[4] + x[5]) + (x[6] + x[7]));
+      };
+      return {{pairwise(s), pairwise(t)}};
+    }
+#endif
   } // namespace
 
   std::vector<unsigned int>
@@ -247,6 +276,8 @@ namespace granular_dg::network
         vertex_ends.first.push_back(vertex_ends.source.size());
       }
     exchanged.assign(ranks->n_slots(), 0.);
+    for (const unsigned int v : ranks->vertices())
+      without_volume = without_volume || junctions[v].width() == 0;
     u.vertices.assign(net.vertices.size(), 0.);
     vertex_u0.assign(net.vertices.size(), 0.);
     u.edges.assign(lines->size(), 0.);
@@ -345,18 +376,20 @@ namespace granular_dg::network
       }
     // the limiter sees the vertex values as the neighbours of the edge ends
     exchange_traces(u);
+    fill_traces(u);
     for (const unsigned int v : ranks->vertices())
       {
         const auto &given = net.vertices[v].initial_value;
-        u.vertices[v]     = given ? *given : balance_at(v, vertex_traces(u, v), 0.);
+        u.vertices[v]     = given ? *given : balance_at(v, 0.);
         vertex_u0[v]  = u.vertices[v];
       }
     set_end_states(0.);
     lines->limit(u.edges.data());
     exchange_traces(u);
+    fill_traces(u);
     for (const unsigned int v : ranks->vertices())
       if (!net.vertices[v].initial_value || junctions[v].width() == 0)
-        u.vertices[v] = balance_at(v, vertex_traces(u, v), 0.);
+        u.vertices[v] = balance_at(v, 0.);
     t      = 0.;
     inflow = 0.;
     balance.mass0 = mass();
@@ -398,18 +431,16 @@ namespace granular_dg::network
       }
   }
 
-  const std::vector<double> &
-  NetworkProblem::vertex_traces(const NetworkState &s, const unsigned int v) const
+  void
+  NetworkProblem::fill_traces(const NetworkState &s) const
   {
-    trace_buffer.clear();
-    for (unsigned int i = vertex_ends.first[v]; i < vertex_ends.first[v + 1]; ++i)
+    end_traces.resize(vertex_ends.source.size());
+    for (std::size_t i = 0; i < end_traces.size(); ++i)
       {
         const long source = vertex_ends.source[i];
-        trace_buffer.push_back(source < 0 ?
-                                 exchanged[-1 - source] :
-                                 lines->trace_at(s.edges.data() + source, vertex_ends.at_end[i]));
+        end_traces[i]     = source < 0 ? exchanged[-1 - source] :
+                                         lines->trace_at(s.edges.data() + source, vertex_ends.at_end[i]);
       }
-    return trace_buffer;
   }
 
   void
@@ -425,9 +456,9 @@ namespace granular_dg::network
   }
 
   double
-  NetworkProblem::balance_at(const unsigned int v, const std::vector<double> &traces,
-                             const double time) const
+  NetworkProblem::balance_at(const unsigned int v, const double time) const
   {
+    const double *traces = traces_at(v);
     if (!ranks->parallel())
       return junctions[v].balance(traces, time);
     try
@@ -476,7 +507,7 @@ namespace granular_dg::network
   double
   NetworkProblem::vertex_state(const unsigned int v, const NetworkState &s, const double time) const
   {
-    return junctions[v].width() > 0 ? s.vertices[v] : balance_at(v, vertex_traces(s, v), time);
+    return junctions[v].width() > 0 ? s.vertices[v] : balance_at(v, time);
   }
 
   const std::vector<double> &
@@ -484,13 +515,12 @@ namespace granular_dg::network
   {
     rates.resize(junctions.size());
     exchange_traces(src);
+    fill_traces(src);
     for (const unsigned int v : ranks->vertices())
       {
-        const auto  &traces = vertex_traces(src, v);
-        const double u0     = junctions[v].width() > 0 ? src.vertices[v] :
-                                                         balance_at(v, traces, time);
-        vertex_u0[v]        = u0;
-        rates[v]            = junctions[v].rate(traces, u0);
+        const double u0 = vertex_state(v, src, time);
+        vertex_u0[v]    = u0;
+        rates[v]        = junctions[v].rate(traces_at(v), u0);
       }
     set_end_states(time);
     stage_inflow.push_back(far_end_inflow(src));
@@ -588,15 +618,19 @@ namespace granular_dg::network
       const bool shared = ranks->has_cut_vertex_without_volume();
       if (shared)
         exchange_traces(s);
+      if (without_volume)
+        fill_traces(s);
       for (const unsigned int v : ranks->vertices())
         vertex_u0[v] = vertex_state(v, s, stage_time);
       set_end_states(stage_time);
       lines->limit(s.edges.data());
       if (shared)
         exchange_traces(s);
+      if (without_volume)
+        fill_traces(s);
       for (const unsigned int v : ranks->vertices())
         if (junctions[v].width() == 0)
-          s.vertices[v] = balance_at(v, vertex_traces(s, v), stage_time);
+          s.vertices[v] = balance_at(v, stage_time);
     }
     StepPhases::Scope scope(phases, StepPhases::admissibility);
     post_stage_checks(s, stage_time);
@@ -747,8 +781,14 @@ namespace granular_dg::network
         m += junctions[v].width() * u.vertices[v];
     for (const unsigned int k : ranks->edges())
       {
+        const double      *mean = u.edges.data() + lines->index(local(k), 0);
+        const unsigned int n    = lines->n_modes();
+#if DEAL_II_VECTORIZATION_WIDTH_IN_BITS >= 512 && defined(__AVX512F__)
         const auto [sum, variation] =
-          edge_sums(u.edges.data() + lines->index(local(k), 0), lines->n_modes(), edge_cells[k]);
+          n == 1 ? edge_sums(mean, edge_cells[k]) : edge_sums(mean, n, edge_cells[k]);
+#else
+        const auto [sum, variation] = edge_sums(mean, n, edge_cells[k]);
+#endif
         m += edge_h[k] * sum;
         tv += variation;
       }
@@ -778,10 +818,11 @@ namespace granular_dg::network
     // every vertex's residual on the rank that reports it, then the
     // largest as on one rank
     exchange_traces(u);
+    fill_traces(u);
     std::vector<double> residual(junctions.size(), 0.);
     for (const unsigned int v : ranks->vertices())
       if (ranks->reports_vertex(v))
-        residual[v] = -junctions[v].net_outflow(vertex_traces(u, v), u.vertices[v]);
+        residual[v] = -junctions[v].net_outflow(traces_at(v), u.vertices[v]);
     ranks->sum(residual.data(), residual.size());
     double largest = 0;
     for (unsigned int v = 0; v < junctions.size(); ++v)

@@ -1,5 +1,7 @@
 #pragma once
 
+#include <deal.II/base/exceptions.h>
+
 #include <granular_dg/dg/numerical_flux.h>
 #include <granular_dg/equations/network/graph.h>
 
@@ -46,25 +48,50 @@ namespace granular_dg::network
     }
 
     /// Flux of each end in its edge's direction: F(trace, u_0) at an
-    /// incoming end, F(u_0, trace) at an outgoing one.
+    /// incoming end, F(u_0, trace) at an outgoing one. traces: one per end,
+    /// in the order of ends() (here and below).
     std::vector<double>
-    end_fluxes(const std::vector<double> &traces, double u0) const;
+    end_fluxes(const double *traces, double u0) const;
 
     /// sum_out F - sum_in F: the rate at which the vertex loses mass, i.e.
     /// minus the Rankine-Hugoniot residual sum_in - sum_out.
     double
-    net_outflow(const std::vector<double> &traces, double u0) const;
+    net_outflow(const double *traces, double u0) const;
 
     /// du_0/dt of (4.1b) (0 for a vertex without volume).
     double
-    rate(const std::vector<double> &traces, double u0) const;
+    rate(const double *traces, double u0) const;
 
     /// The u_0 with net_outflow = 0. Throws RunError (naming t) when the
     /// outgoing edges cannot carry the incoming flux for any u_0.
     double
-    balance(const std::vector<double> &traces, double t) const;
+    balance(const double *traces, double t) const;
+
+    /// the above with the traces in a vector
+    std::vector<double>
+    end_fluxes(const std::vector<double> &traces, const double u0) const
+    {
+      return end_fluxes(checked(traces), u0);
+    }
+    double
+    net_outflow(const std::vector<double> &traces, const double u0) const
+    {
+      return net_outflow(checked(traces), u0);
+    }
+    double
+    balance(const std::vector<double> &traces, const double t) const
+    {
+      return balance(checked(traces), t);
+    }
 
   private:
+    const double *
+    checked(const std::vector<double> &traces) const
+    {
+      AssertDimension(traces.size(), end_list.size());
+      return traces.data();
+    }
+
     std::vector<EdgeEnd>      end_list;
     std::vector<FluxFunction> flux; ///< of each end's edge
     NumericalFlux             type;

@@ -200,10 +200,16 @@ namespace granular_dg::network
     double boundary_inflow() const { return ranks->sum(inflow); }
     /// L1 norm of the cell averages and the vertices (the scale of the drift).
     double l1_norm() const;
-    /// Traces of the edges at the ends of vertex v (Junction::ends() order;
-    /// valid until the next call). At a vertex shared with other ranks they
-    /// are those of the last exchange_traces().
-    const std::vector<double> &vertex_traces(const NetworkState &state, unsigned int v) const;
+    /// The traces of state's edges at the ends of this rank's vertices, in
+    /// one pass (at a vertex shared with other ranks: those of the last
+    /// exchange_traces()); traces_at(v): those of vertex v, in
+    /// Junction::ends() order, until the next call.
+    void fill_traces(const NetworkState &state) const;
+    const double *
+    traces_at(const unsigned int v) const
+    {
+      return end_traces.data() + vertex_ends.first[v];
+    }
     /// Collective: share the traces of state at the vertices whose edges lie
     /// on several ranks (nothing to do on one rank).
     void exchange_traces(const NetworkState &state) const;
@@ -252,7 +258,7 @@ namespace granular_dg::network
     /// coupling part of a stage; sets the vertex values the edges see)
     const std::vector<double> &couple(double t, const NetworkState &src) const;
     /// the value the edges see at vertex v: u_0, or the balance of the
-    /// traces for a vertex without volume
+    /// traces (of the last fill_traces(s)) for a vertex without volume
     double vertex_state(unsigned int v, const NetworkState &s, double t) const;
     /// inflow - outflow through the free ends of this rank's edges, with the
     /// far-end data of the last set_end_states()
@@ -283,9 +289,10 @@ namespace granular_dg::network
     double local_mass() const;
     /// this rank's mass and total variation in one pass
     std::array<double, 2> local_sums() const;
-    /// Junction::balance at vertex v; in parallel a failure is held (NaN is
-    /// returned) until the stage's collective check reports it on every rank.
-    double balance_at(unsigned int v, const std::vector<double> &traces, double time) const;
+    /// Junction::balance at vertex v of the traces of the last fill_traces();
+    /// in parallel a failure is held (NaN is returned) until the stage's
+    /// collective check reports it on every rank.
+    double balance_at(unsigned int v, double time) const;
     using Samples = std::vector<std::vector<std::pair<double, double>>>;
     /// sample points per cell of the VTU (at least 2) and of the profiles
     unsigned int vtu_points() const
@@ -331,7 +338,10 @@ namespace granular_dg::network
     mutable std::vector<double>                      exchanged;
     /// a vertex balance that failed on this rank (parallel runs)
     mutable std::optional<std::string>               pending_error;
-    mutable std::vector<double>                      trace_buffer;
+    /// fill_traces(): one per entry of vertex_ends
+    mutable std::vector<double>                      end_traces;
+    /// whether a vertex of this rank has no volume (balanced every stage)
+    bool                                             without_volume = false;
     /// the end faces of this rank's edges (2 local edge + side) at each
     /// vertex, the (edge, side) of the free ends and of those among them
     /// with Dirichlet data
