@@ -19,6 +19,7 @@ import os
 import re
 import shutil
 import subprocess
+from pathlib import Path
 
 from granular_dg import arguments, outputs
 from granular_dg.run import ENV, NO_SNAPSHOTS, ROOT, cfl_limits, load, run_case
@@ -59,8 +60,7 @@ def cfl_override(prm, degree):
     the case file's is above it (the program refuses it; the time step does
     not change the cost of a step)."""
     limit = cfl_limits()["ssp_rk3"][min(degree, 4)]
-    with open(os.path.join(ROOT, prm)) as f:
-        m = re.search(r"^\s*set CFL number\s*=\s*([\d.eE+-]+)", f.read(), re.M)
+    m = re.search(r"^\s*set CFL number\s*=\s*([\d.eE+-]+)", Path(ROOT, prm).read_text(), re.M)
     return ["Time stepping/CFL number=%g" % limit] if m and float(m[1]) > limit else []
 
 
@@ -135,12 +135,10 @@ def run_step67(build, dim, degree, refinements, steps, reuse=False):
     d = os.path.join(os.path.abspath(build), "step67-%dd-p%d" % (dim, degree))
     exe, result = os.path.join(d, "step-67"), os.path.join(d, "result.json")
     if reuse and os.path.exists(result):
-        with open(result) as f:
-            return json.load(f)
+        return json.loads(Path(result).read_text())
     if not os.path.exists(exe):
         os.makedirs(d, exist_ok=True)
-        with open(STEP67) as f, open(os.path.join(d, "step-67.cc"), "w") as g:
-            g.write(patch_step67(f.read(), dim, degree, refinements, steps))
+        Path(d, "step-67.cc").write_text(patch_step67(Path(STEP67).read_text(), dim, degree, refinements, steps))
         shutil.copy(os.path.join(os.path.dirname(STEP67), "CMakeLists.txt"), d)
         subprocess.run(["cmake", "-S", d, "-B", d, "-DCMAKE_BUILD_TYPE=Release"], check=True,
                        stdout=subprocess.DEVNULL)
@@ -157,8 +155,7 @@ def run_step67(build, dim, degree, refinements, steps, reuse=False):
          "degree": degree, "ranks": 1, "engine": "matrix_free", "n_dofs": n_dofs, "steps": n_steps,
          "cpu_us_per_step": 1e6 * cpu / n_steps, "mdofs_step": rate, "mdofs_rk": rate,
          "mdofs_wall": n_dofs * stages * n_steps / wall / 1e6, "load_before": before, "load_after": load(3)}
-    with open(result, "w") as f:
-        json.dump(r, f)
+    Path(result).write_text(json.dumps(r))
     return r
 
 
@@ -172,15 +169,13 @@ def write_tables(out, rows):
         r["step_ratio_to_step67"] = r["mdofs_step"] / ref if ref else ""
     outputs.write_csv(os.path.join(out, "throughput.csv"),
                       [{k: ("%.4g" % r[k] if isinstance(r[k], float) else r[k]) for k in FIELDS} for r in rows])
-    with open(os.path.join(out, "throughput.md"), "w") as f:
-        f.write(outputs.markdown(
-            ["code", "case", "dim", "p", "ranks", "engine", "DoFs", "CPU us/step", "MDoF/s/core step",
-             "MDoF/s/core RK", "MDoF/s wall", "RK / step-67", "step / step-67", "load before -> after"],
-            [[r["code"], r["case"], "%d" % r["dim"], "%d" % r["degree"], "%d" % r["ranks"], r["engine"],
-              "%d" % r["n_dofs"], "%.1f" % r["cpu_us_per_step"], "%.1f" % r["mdofs_step"], "%.1f" % r["mdofs_rk"],
-              "%.1f" % r["mdofs_wall"]] +
-             ["%.2f" % r[k] if r[k] != "" else "" for k in ("ratio_to_step67", "step_ratio_to_step67")] +
-             ["%s -> %s" % (r["load_before"], r["load_after"])] for r in rows]))
+    Path(out, "throughput.md").write_text(outputs.markdown(
+        ["code", "case", "dim", "p", "ranks", "engine", "DoFs", "CPU us/step", "MDoF/s/core step",
+         "MDoF/s/core RK", "MDoF/s wall", "RK / step-67", "step / step-67", "load before -> after"],
+        [[r[k] for k in ("code", "case", "dim", "degree", "ranks", "engine", "n_dofs")] +
+         ["%.1f" % r[k] for k in ("cpu_us_per_step", "mdofs_step", "mdofs_rk", "mdofs_wall")] +
+         ["%.2f" % r[k] if r[k] != "" else "" for k in ("ratio_to_step67", "step_ratio_to_step67")] +
+         ["%s -> %s" % (r["load_before"], r["load_after"])] for r in rows]))
 
 
 if __name__ == "__main__":

@@ -18,9 +18,8 @@ import numpy as np
 
 from granular_dg import main, outputs, plot
 from granular_dg.compare import value_at
+from granular_dg.plot import STYLES
 from granular_dg.run import Runs
-
-STYLES = ["-", "--", ":", "-."]
 
 
 def positive(v):
@@ -47,8 +46,8 @@ def figure(a):
                   color="C0", label="stationary (4.1)-(4.2) with final sgn(v)")
     ax[1, 0].set_xlim(0, zmax)
     plot.label(ax[1, 0], "z", "u", legend=8, grid=0)
-    for i, (d, name) in enumerate([plot.split_run(a.run)] + [plot.split_run(c) for c in a.compare]):
-        h = history if i == 0 else outputs.history(d)
+    for i, (d, name) in enumerate(map(plot.split_run, [a.run] + a.compare)):
+        h = outputs.history(d)
         ax[1, 1].semilogy(h["time"], positive(h["max_velocity"]), STYLES[i % 4], color="k", lw=1, label=name)
     plot.label(ax[1, 1], "t", "max_z v(z, t)", legend=8, which="major")
     if a.title:

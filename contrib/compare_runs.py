@@ -13,14 +13,10 @@ file identical to the letter, timings aside), 'within TOL', or 'DIFFERENT' (exit
 """
 import sys
 
-from granular_dg import parser
+from granular_dg import arguments
 from granular_dg.compare import compare_trees
 
-p = parser(__doc__)
-p.add_argument("before")
-p.add_argument("after")
-p.add_argument("--tolerance", type=float, default=1e-13)
-a = p.parse_args()
+a = arguments(__doc__, ["before", "after", ("--tolerance", dict(type=float, default=1e-13))])
 lines, agree = compare_trees(a.before, a.after, a.tolerance)
 print("\n".join(lines))
 sys.exit(0 if agree else 1)

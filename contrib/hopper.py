@@ -13,14 +13,13 @@ directory, default build; the runs go to $OUTPUT_DIR, default output/):
 
 precision and indicators reuse the runs that completed before.
 """
-import math
 import os
 
 import numpy as np
 
 from granular_dg import main, outputs, plot
 from granular_dg.compare import stress_l1
-from granular_dg.run import NO_SNAPSHOTS, run_case
+from granular_dg.run import NO_SNAPSHOTS, Runs
 
 OUT = os.environ.get('OUTPUT_DIR', 'output')
 RANGE_ANGLES = [18.5, 19, 20, 21, 21.5, 22, 23, 24, 25, 26, 27, 28, 29, 30, 31, 31.5, 32, 33]
@@ -45,8 +44,6 @@ def save(fig, name, tight=True):
 
 
 def fig9():
-    if not have('fig9_scan'):
-        return
     d = read('fig9_scan', 'fig9-scan.csv')
     fig, ax = plt.subplots(figsize=(6.4, 5))
     T = d['Theta_w_deg']
@@ -75,8 +72,6 @@ def fig9():
 
 
 def fig10():
-    if not have('radial_wedge', 'radial_cone'):
-        return
     fig, axes = plt.subplots(2, 2, figsize=(10, 7))
     for col, g, bound in ((0, 'wedge', 0.025), (1, 'cone', 0.5)):
         d = read('radial_' + g, 'hopper-steps.csv')
@@ -95,8 +90,7 @@ def fig10():
             i = np.searchsorted(e['tau'], 1.0)
             ax.semilogy(t, e['max_rel_diff_radial'][i] * np.exp(kappa * (t - e['tau'][i])), 'k--', lw=1,
                         label=r'$e^{\kappa\tau}$, $\kappa$ = %+.3f (linearised DG spectrum)' % kappa)
-            ax.legend(fontsize=8)
-        plot.label(ax, r'$\tau$', 'max relative difference')
+        plot.label(ax, r'$\tau$', 'max relative difference', legend=8 if os.path.exists(p) else None)
     fig.suptitle('Fig. 10: preservation of the radial field (top); growth/decay of a '
                  'perturbation (bottom)', fontsize=11)
     save(fig, 'hopper_fig10_preservation.png')
@@ -111,13 +105,10 @@ def profiles(case, axes, label=None):
             ax.plot(d['theta_deg'], d[name] / 1e3, color=c, lw=1,
                     label=(r'$\tau$ = %.2f' % tau) if ax is axes[0] else None)
     for ax, name in zip(axes, (r'$T_{rr}/r$', r'$T_{r\theta}/r$', r'$T_{\theta\theta}/r$')):
-        plot.label(ax, r'$\theta$ (deg)', name + ' (kPa/m)', label, size=9)
-    axes[0].legend(fontsize=7)
+        plot.label(ax, r'$\theta$ (deg)', name + ' (kPa/m)', label, size=9, legend=7 if ax is axes[0] else None)
 
 
-def transition_figure(case, number, title):
-    if not have(case):
-        return
+def transition_figure(case, number):
     fig = plt.figure(figsize=(13, 7.5))
     profiles(case, [fig.add_subplot(2, 3, i + 1) for i in range(3)])
     d = read(case, 'hopper-field.csv')
@@ -131,13 +122,11 @@ def transition_figure(case, number, title):
         m = ax.pcolormesh(th, taus, d[name].reshape(len(taus), len(th)) / scale, shading='auto', cmap=cmap)
         plot.label(ax, r'$\theta$ (deg)', r'$\tau = -\ln(r/r_0)$', label, size=9, grid=0)
         plt.colorbar(m, ax=ax, label='deg' if name == 'psi_deg' else 'kPa/m')
-    fig.suptitle('Fig. %s: %s' % (number, title), fontsize=11)
+    fig.suptitle(r'Fig. %s: %s $%s^\circ \to %s^\circ$, P$^1$, N = 400' % (number, *case.split('_')), fontsize=11)
     save(fig, 'hopper_fig%s_%s.png' % (number, case))
 
 
 def fig11():
-    if not have('cone_30_24_p1', 'cone_30_24_p2'):
-        return
     fig, axes = plt.subplots(2, 3, figsize=(13, 7.5))
     profiles('cone_30_24_p1', axes[0], r'P$^1$, N = 400')
     profiles('cone_30_24_p2', axes[1], r'P$^2$, N = 200')
@@ -174,22 +163,17 @@ def work_precision_figure():
 
 
 def figures(a):
+    """The figures whose runs are there (the others are skipped, naming the runs missing)."""
     global OUT, FIG
     OUT, FIG = a.output, a.figures
-    fig9()
-    fig10()
-    fig11()
-    transition_figure('cone_30_25', '12', r'cone $30^\circ \to 25^\circ$, P$^1$, N = 400')
-    transition_figure('wedge_30_25', '13', r'wedge $30^\circ \to 25^\circ$, P$^1$, N = 400')
-    transition_figure('wedge_30_35', '14', r'wedge $30^\circ \to 35^\circ$, P$^1$, N = 400')
-    transition_figure('cone_30_31', '14b', r'cone $30^\circ \to 31^\circ$, P$^1$, N = 400')
+    drawings = [(fig9, (), ['fig9_scan']), (fig10, (), ['radial_wedge', 'radial_cone']),
+                (fig11, (), ['cone_30_24_p1', 'cone_30_24_p2'])]
+    drawings += [(transition_figure, (case, number), [case]) for case, number in
+                 (('cone_30_25', '12'), ('wedge_30_25', '13'), ('wedge_30_35', '14'), ('cone_30_31', '14b'))]
+    for draw, args, cases in drawings:
+        if have(*cases):
+            draw(*args)
     work_precision_figure()
-
-
-def run(build, prm, directory, *sets, reuse=False, check=False):
-    """A run and its CPU time (a reused run without one is repeated)."""
-    r = run_case(build, prm, directory, sets, reuse=reuse, check=check)
-    return run_case(build, prm, directory, sets, check=check) if math.isnan(r.cpu_s) else r
 
 
 def stress(directory, i):
@@ -198,16 +182,16 @@ def stress(directory, i):
 
 def march_range(a):
     """The 30 deg cone to the lower angles RANGE_ANGLES, P1, N = 400, to r = 0.05 r0."""
-    base, rows = os.path.join(OUT, 'hopper_march_range'), []
+    runs, rows = Runs(a.build, os.path.join(OUT, 'hopper_march_range'), sets=NO_SNAPSHOTS), []
     for angle in RANGE_ANGLES:
-        r = run(a.build, 'prm/hopper_cone_30_25.prm', os.path.join(base, 'theta_%g' % angle),
-                'Hopper/lower half-angle=%g' % angle, 'Hopper output/step series interval=0', *NO_SNAPSHOTS)
+        r = runs.run('theta_%g' % angle, 'prm/hopper_cone_30_25.prm', [
+            'Hopper/lower half-angle=%g' % angle, 'Hopper output/step series interval=0'], reuse=False)
         s = r.summary
         rows.append(dict(theta_w=angle, completed=int(r.code == 0), final_tau=s.get('final_time', 0),
                          min_margin=s.get('diagnostics', {}).get('min_hyperbolicity_margin', float('nan')),
                          cpu_s=r.cpu_s))
         print('theta_w = %g: exit %d, tau = %s %s' % (angle, r.code, s.get('final_time'), r.stderr[:160]))
-    outputs.write_csv(os.path.join(base, 'range.csv'), rows)
+    runs.csv('range', rows)
 
 
 def precision(a):
@@ -215,49 +199,44 @@ def precision(a):
     (1) the 30 -> 25 deg cone at tau = 0.5 against P3 on N = 800, (2) as (0)
     without the limiter; the relative L1 error of (T_rr, T_rtheta) at 2001
     theta, the CPU time of the run and of the march (minus a one-step run)."""
-    base = os.path.join(OUT, 'hopper_work_precision')
+    runs = Runs(a.build, os.path.join(OUT, 'hopper_work_precision'), sets=SAMPLED, check=True)
     # CFL 1/(2k+1) (GM) for k = 1, 2; k = 3 is unstable at 1/7 (limit ~0.13, doc/hopper.md)
     cfl = {1: 1 / 3., 2: 1 / 5., 3: 0.12}
     meshes = {1: [50, 100, 200, 400], 2: [25, 50, 100, 200], 3: [25, 50, 100, 200]}
-    ref = stress(run(a.build, 'prm/hopper_cone_30_25.prm', os.path.join(base, 'transition_reference'),
-                     'Discretization/degree=3', 'Hopper/cells=800', 'Time stepping/CFL number=%.12g' % cfl[3],
-                     'Time stepping/final time=0.5', *SAMPLED, reuse=True, check=True).directory, 1)
+    ref = stress(runs.run('transition_reference', 'prm/hopper_cone_30_25.prm', [
+        'Discretization/degree=3', 'Hopper/cells=800', 'Time stepping/CFL number=%.12g' % cfl[3],
+        'Time stepping/final time=0.5']).directory, 1)
     # the CPU time of start-up and set-up (a one-step run), subtracted below
-    setup = {prm: min(run(a.build, prm, os.path.join(base, 'setup_' + os.path.basename(prm)[:-4]),
-                          'Time stepping/final time=1e-9', *SAMPLED).cpu_s for _ in range(3))
+    setup = {prm: min(runs.run('setup_' + os.path.basename(prm)[:-4], prm, ['Time stepping/final time=1e-9'],
+                               reuse=False).cpu_s for _ in range(3))
              for prm in ('prm/hopper_radial_cone.prm', 'prm/hopper_cone_30_25.prm')}
     rows = []
     for case, prm, final, extra in ((0, 'prm/hopper_radial_cone.prm', 1.0, []),
                                     (1, 'prm/hopper_cone_30_25.prm', 0.5, []),
                                     (2, 'prm/hopper_radial_cone.prm', 1.0, ['Limiter/scheme=none'])):
         for p, n in ((p, n) for p, cells in meshes.items() for n in cells):
-            r = run(a.build, prm, os.path.join(base, 'case%d_p%d_n%d' % (case, p, n)), 'Discretization/degree=%d' % p,
-                    'Hopper/cells=%d' % n, 'Time stepping/CFL number=%.12g' % cfl[p],
-                    'Time stepping/final time=%g' % final, *SAMPLED, *extra, reuse=True, check=True)
+            r = runs.run('case%d_p%d_n%d' % (case, p, n), prm, ['Discretization/degree=%d' % p, 'Hopper/cells=%d' % n,
+                         'Time stepping/CFL number=%.12g' % cfl[p], 'Time stepping/final time=%g' % final] + extra)
             e = stress_l1(stress(r.directory, 1), ref if case == 1 else None)
             rows.append(dict(case=case, degree=p, cells=n, l1_error=e, cpu_s=r.cpu_s,
                              cpu_march_s=max(r.cpu_s - setup[prm], 1e-3), time_loop_s=r.summary['time_loop_s'],
                              dof_updates_per_s=r.summary['dof_updates_per_s']))
             print('case %d P%d N = %d: L1 %.3e, cpu %.2f s, %.2f MDoF/s'
                   % (case, p, n, e, r.cpu_s, r.summary['dof_updates_per_s'] / 1e6))
-    outputs.write_csv(os.path.join(base, 'work-precision.csv'), rows)
+    runs.csv('work-precision', rows)
 
 
 def indicators(a):
     """The whole march of the cone and wedge 30 -> 25 as shipped on N = 100-400,
     the limiter everywhere and kxrcf, against P2 N = 1600 references of each."""
-    base = os.path.join(OUT, 'hopper_indicators')
-    common = SAMPLED + ('Output/output times=1',)
-    choices = ('everywhere', 'kxrcf')
-    rows = []
+    runs = Runs(a.build, os.path.join(OUT, 'hopper_indicators'), sets=SAMPLED + ('Output/output times=1',), check=True)
+    choices, rows = ('everywhere', 'kxrcf'), []
     for case in ('cone_30_25', 'wedge_30_25'):
         prm = 'prm/hopper_%s.prm' % case
-        refs = [run(a.build, prm, os.path.join(base, '%s_reference_%s' % (case, k)), 'Limiter/indicator=' + k,
-                    'Discretization/degree=2', 'Hopper/cells=1600', 'Time stepping/CFL number=0.2', *common,
-                    reuse=True, check=True).directory for k in choices]
+        refs = [runs.run('%s_reference_%s' % (case, k), prm, ['Limiter/indicator=' + k, 'Discretization/degree=2',
+                         'Hopper/cells=1600', 'Time stepping/CFL number=0.2']).directory for k in choices]
         for n, k in ((n, k) for n in (100, 200, 400) for k in choices):
-            r = run(a.build, prm, os.path.join(base, '%s_%s_n%d' % (case, k, n)), 'Limiter/indicator=' + k,
-                    'Hopper/cells=%d' % n, *common, reuse=True, check=True)
+            r = runs.run('%s_%s_n%d' % (case, k, n), prm, ['Limiter/indicator=' + k, 'Hopper/cells=%d' % n])
             for i, tau in ((1, '1'), (2, 'outlet')):  # stress-0001: tau = 1; stress-0002: the outlet
                 e = [stress_l1(stress(r.directory, i), stress(d, i)) for d in refs]
                 rows.append(dict(case=case, indicator=k, cells=n, tau=tau, l1_vs_reference_everywhere=e[0],
@@ -266,7 +245,7 @@ def indicators(a):
                       % (case, k, n, tau, e[0], e[1], '/'.join(choices), r.cpu_s))
         print('%s: the references differ at the outlet by %.2e'
               % (case, stress_l1(stress(refs[0], 2), stress(refs[1], 2))))
-    outputs.write_csv(os.path.join(base, 'whole-march.csv'), rows)
+    runs.csv('whole-march', rows)
 
 
 if __name__ == '__main__':

@@ -23,14 +23,13 @@ from granular_dg import main, outputs, plot
 from granular_dg.compare import slice_l1, total_variation
 from granular_dg.run import NO_SNAPSHOTS, Runs
 
-# name: (numerical flux, limiter, troubled-cell indicator)
+# name: (numerical flux, limiter, troubled-cell indicator, line style)
 CONFIGS = {
-    "aware": ("impedance", "flux_variables", "everywhere"),
-    "aware-indicator": ("impedance", "flux_variables", "modal_energy"),
-    "aware-nolim": ("impedance", "none", "everywhere"),
-    "naive": ("local_lax_friedrichs", "componentwise", "everywhere"),
+    "aware": ("impedance", "flux_variables", "everywhere", "o-"),
+    "aware-indicator": ("impedance", "flux_variables", "modal_energy", "D-."),
+    "aware-nolim": ("impedance", "none", "everywhere", "^:"),
+    "naive": ("local_lax_friedrichs", "componentwise", "everywhere", "s--"),
 }
-STYLES = {"naive": "s--", "aware": "o-", "aware-indicator": "D-.", "aware-nolim": "^:"}
 
 
 def leading_peak(directory):
@@ -43,23 +42,19 @@ def leading_peak(directory):
 
 def study(a):
     configs = a.only.split(",") if a.only else list(CONFIGS)
-    for name in configs:
-        if name not in CONFIGS:
-            raise SystemExit("--only: unknown configuration '%s' (allowed: %s)" % (name, ", ".join(CONFIGS)))
+    if not set(configs) <= set(CONFIGS):
+        raise SystemExit("--only: an unknown configuration in '%s' (allowed: %s)" % (a.only, ", ".join(CONFIGS)))
     runs = Runs(a.build, a.out, sets=NO_SNAPSHOTS, check=True)
     x_ref = leading_peak(os.path.dirname(os.path.abspath(a.reference)))
     degrees = (2,) if a.quick else (1, 2, 3)
     rows = []
     if a.rows_from:  # the rows of an earlier study for the configurations not rerun
-        rows = [r for r in outputs.read_table(a.rows_from, numbers=False).rows() if r["config"] not in configs]
-        for r in rows:
-            r.update({k: int(r[k]) for k in ("degree", "cells_per_layer", "n_dofs")})
-            r.setdefault("indicator", "everywhere")
+        rows = [dict(r, **{k: int(r[k]) for k in ("degree", "cells_per_layer", "n_dofs")})
+                for r in outputs.read_table(a.rows_from, numbers=False).rows() if r["config"] not in configs]
+    # not finer than the reference (P3 at 32 cells per layer)
     for name, degree, per_layer in ((n, d, c) for n in configs for d in degrees
-                                    for c in ((4, 8) if a.quick else (2, 4, 8, 16, 32))):
-        if degree * per_layer > 32:  # finer than the reference (P3 at 32 cells per layer)
-            continue
-        flux, limiter, indicator = CONFIGS[name]
+                                    for c in ((4, 8) if a.quick else (2, 4, 8, 16, 32)) if d * c <= 32):
+        flux, limiter, indicator, _ = CONFIGS[name]
         r = runs.run("%s-p%d-%d" % (name, degree, per_layer), "prm/layered_1d.prm", [
             "Mesh/cells x=%d" % (300 * per_layer), "Discretization/degree=%d" % degree,
             "Discretization/numerical flux=" + flux, "Limiter/scheme=" + limiter, "Limiter/indicator=" + indicator,
@@ -77,11 +72,11 @@ def study(a):
         print(rows[-1], flush=True)
     runs.csv("layered-study", rows)
     fig, ax = plot.subplots(figsize=(7, 5))
-    for name in CONFIGS:
+    for name, (*_, style) in CONFIGS.items():
         for degree in degrees:
             sel = [r for r in outputs.select(rows, config=name, degree=degree) if r["l1_strain_error"] > 0]
             if sel:
-                ax.loglog([r["time_loop_cpu_s"] for r in sel], [r["l1_strain_error"] for r in sel], STYLES[name],
+                ax.loglog([r["time_loop_cpu_s"] for r in sel], [r["l1_strain_error"] for r in sel], style,
                           label="%s P%d" % (name, degree))
     # Clawpack's second-order f-wave finite volumes on the same case (doc/layered_strip.md)
     ax.loglog([1, 5], [0.09, 0.04], "k*", ms=12, label="Clawpack f-wave")

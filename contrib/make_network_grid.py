@@ -35,13 +35,12 @@ def write_grid(n, edge_file, vertex_file):
             # hour the traffic jams back into the grid from them
             edges.append((street[-1], 'free', f'{0.7 * al:g}', f'{0.07 * al:g}', 'outflow', ''))
     with open(edge_file, 'w') as f:
-        f.write(f'# a {n} x {n} city grid (contrib/make_network_grid.py {n})\n')
-        f.write('id,from,to,length,flux,parameter,initial,far_end,far_end_data\n')
-        for k, (a, b, al, initial, far, g) in enumerate(edges, 1):
-            f.write(f'{k},{a},{b},1,traffic,{al},{initial},{far},{g}\n')
+        f.write(f'# a {n} x {n} city grid (contrib/make_network_grid.py {n})\n'
+                'id,from,to,length,flux,parameter,initial,far_end,far_end_data\n')
+        f.writelines(f'{k},{a},{b},1,traffic,{al},{initial},{far},{g}\n' for k, (a, b, al, initial, far, g)
+                     in enumerate(edges, 1))
     with open(vertex_file, 'w') as f:
-        f.write(f'# the junctions of the {n} x {n} city grid\n')
-        f.write('id,x,y\n')
+        f.write(f'# the junctions of the {n} x {n} city grid\nid,x,y\n')
         f.writelines(f'{vid(i, j)},{i},{j}\n' for j in range(n) for i in range(n))
     return len(edges)
 

@@ -57,8 +57,7 @@ def eoc(studies, figures):
         ax.semilogy(range(3, 13), [2 * v for v in TABLE_1[ex]], 'k--', lw=1, label='2 x Table 1')
         ax.semilogy(range(3, 13), TABLE_1[ex], 'k:', lw=1, label='Table 1')
         plot.label(ax, 'grid level l (dx = 2^-l)', title='Example %s' % ex)
-    axes[0].set_ylabel('L1 error at T')
-    axes[0].legend(fontsize=8)
+    plot.label(axes[0], y='L1 error at T', legend=8, grid=0)
     plot.save(fig, os.path.join(figures, 'network_eoc.png'), dpi=130, say=True)
 
 
@@ -72,8 +71,7 @@ def smooth(studies, figures):
             # ingoing edges (upstream of the vertex) dotted
             ax.loglog(dx, [r['l1_error_edge_1'] + r['l1_error_edge_2'] for r in rs], ':', color=COLORS[p], lw=1)
         plot.label(ax, 'dx', title=title, size=10)
-    axes[0].set_ylabel('L1 error at T (solid: all, dotted: ingoing edges)')
-    axes[0].legend(fontsize=8)
+    plot.label(axes[0], y='L1 error at T (solid: all, dotted: ingoing edges)', legend=8, grid=0)
     plot.save(fig, os.path.join(figures, 'network_smooth_order.png'), dpi=130, say=True)
 
 

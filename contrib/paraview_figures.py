@@ -17,20 +17,23 @@ import sys
 
 from paraview.simple import (AssignViewToLayout, ColorBy, Contour, CreateLayout, CreateRenderView, ExtractSurface,
                              GetAnimationScene, GetColorTransferFunction, GetScalarBar, Glyph, OpenDataFile, Render,
-                             ResetCamera, SaveScreenshot, Show, Text, Threshold, Tube, UpdatePipeline, WarpByScalar)
+                             ResetCamera, SaveScreenshot, SetProperties, Show, Text, Threshold, Tube, UpdatePipeline,
+                             WarpByScalar)
 
 # the titles of doc/figures/hopper_paraview_<case>.png, by the run's directory
 HOPPER_TITLES = {'hopper_cone_30_25': 'cone 30 -> 25 deg, r from 1.5 r0 to 0.05 r0: T_rr/r, white: psi every 5 deg',
                  'hopper_wedge_30_35': 'wedge 30 -> 35 deg: T_rr/r, white: psi every 5 deg'}
 
 
-def white_view(size, layout=None, hint=0):
+def white_view(size, layout=None, hint=0, time=None):
     """A white render view of the given size without the orientation axes
-    (in a cell of the layout if given)."""
+    (in a cell of the layout if given; at the time if given)."""
     view = CreateRenderView(ViewSize=size, OrientationAxesVisibility=0, Background=[1, 1, 1],
                             UseColorPaletteForBackground=0)
     if layout is not None:
         AssignViewToLayout(view=view, layout=layout, hint=hint)
+    if time is not None:
+        view.ViewTime = time
     return view
 
 
@@ -52,18 +55,13 @@ def coloured(source, view, array, lut=None, rescale=None):
 def scalar_bar(lut, view, title, **settings):
     """The colour bar of lut in view: black text, the title, placed by the
     settings (Position, ScalarBarLength, ...)."""
-    bar = GetScalarBar(lut, view)
-    bar.Title, bar.ComponentTitle = title, ''
-    bar.TitleColor = bar.LabelColor = [0, 0, 0]
-    bar.WindowLocation = 'Any Location'
-    for key, value in settings.items():
-        setattr(bar, key, value)
+    SetProperties(GetScalarBar(lut, view), Title=title, ComponentTitle='', TitleColor=[0, 0, 0], LabelColor=[0, 0, 0],
+                  WindowLocation='Any Location', **settings)
 
 
 def title(view, text, size, location='Upper Center'):
     """Black text in the view."""
-    shown = Show(Text(Text=text), view)
-    shown.Color, shown.FontSize, shown.WindowLocation = [0, 0, 0], size, location
+    Show(Text(Text=text), view, Color=[0, 0, 0], FontSize=size, WindowLocation=location)
 
 
 def flat(view, scale=None):
@@ -86,21 +84,14 @@ def save(png, what, size, note=''):
     print('wrote ' + png + note)
 
 
-def edge_cells(reader, lower, upper):
-    """Cells whose point field `edge` lies in [lower, upper]: the edges are
-    numbered 1, 2, ..., the vertices 0."""
-    return Threshold(Input=reader, Scalars=['POINTS', 'edge'], LowerThreshold=lower, UpperThreshold=upper)
-
-
-def edges(reader):
-    """The network's edges as polydata (Tube needs it)."""
-    return ExtractSurface(Input=edge_cells(reader, 0.5, 1e9))
-
-
-def vertices(reader, size):
-    """The network's vertices as spheres."""
-    return Glyph(Input=edge_cells(reader, -0.5, 0.5), GlyphType='Sphere', ScaleArray=['POINTS', 'No scale array'],
-                 ScaleFactor=size)
+def edges_and_vertices(reader, size):
+    """The network's edges as polydata (Tube needs it) and its vertices as
+    spheres of the size: the point field `edge` numbers the edges 1, 2, ...,
+    the vertices 0."""
+    def cells(lower, upper):
+        return Threshold(Input=reader, Scalars=['POINTS', 'edge'], LowerThreshold=lower, UpperThreshold=upper)
+    return ExtractSurface(Input=cells(0.5, 1e9)), Glyph(Input=cells(-0.5, 0.5), GlyphType='Sphere',
+                                                         ScaleArray=['POINTS', 'No scale array'], ScaleFactor=size)
 
 
 def u_scale(preset, lo, hi):
@@ -119,11 +110,9 @@ def hopper(pvd, png, array='T_rr_over_r', text=None):
     scalar_bar(GetColorTransferFunction(array), view,
                array.replace('_over_r', '/r') + (' (Pa/m)' if 'over_r' in array else ''),
                TitleFontSize=18, LabelFontSize=16, ScalarBarLength=0.4, Position=[0.85, 0.1])
-    contour = Contour(Input=reader, ContourBy=['POINTS', 'psi_deg'], Isosurfaces=list(range(-25, 30, 5)))
-    lines = Show(contour, view)
+    lines = Show(Contour(Input=reader, ContourBy=['POINTS', 'psi_deg'], Isosurfaces=list(range(-25, 30, 5))), view)
     ColorBy(lines, None)
-    lines.AmbientColor = lines.DiffuseColor = [1, 1, 1]
-    lines.LineWidth = 1.5
+    SetProperties(lines, AmbientColor=[1, 1, 1], DiffuseColor=[1, 1, 1], LineWidth=1.5)
     title(view, text or HOPPER_TITLES.get(os.path.basename(os.path.dirname(pvd)),
                                           'hopper stress field; white: psi contours every 5 deg'), 20)
     flat(view)
@@ -138,8 +127,7 @@ def layered(pvd, png, time, array='stress'):
     scene = GetAnimationScene()
     scene.UpdateAnimationUsingDataTimeSteps()
     scene.AnimationTime = time
-    view = white_view([1800, 320])
-    view.ViewTime = time
+    view = white_view([1800, 320], time=time)
     coloured(reader, view, array, rescale=(False, True))
     scalar_bar(GetColorTransferFunction(array), view, array, Orientation='Vertical', Position=[0.93, 0.08],
                ScalarBarLength=0.8)
@@ -156,25 +144,20 @@ def network(directory, png, time=None):
     layout = CreateLayout('network')
     lut = u_scale('Viridis (matplotlib)', *u_range)
     # left: the network in the plane, tubes coloured by u, the vertex a sphere
-    plane = white_view([900, 700], layout)
-    plane.ViewTime = time
-    lines = edges(reader)
+    plane = white_view([900, 700], layout, time=time)
+    lines, vertices = edges_and_vertices(reader, 0.09)
     tubes = Tube(Input=lines, Radius=0.018, NumberofSides=16)
     shown = coloured(tubes, plane, 'u', lut)
     scalar_bar(lut, plane, 'u', Position=[0.88, 0.08], ScalarBarLength=0.4)
     shown.SetScalarBarVisibility(plane, True)
-    coloured(vertices(reader, 0.09), plane, 'u', lut)
+    coloured(vertices, plane, 'u', lut)
     title(plane, 't = %g' % time, 14, 'Upper Left Corner')
     camera(plane, [0, 0, 6], [0, 0, 0], [0, 1, 0], 1.2)
     # right: u as height above the plane, over the network in grey
-    height = white_view([900, 700], layout)
-    height.ViewTime = time
-    AssignViewToLayout(view=height, layout=layout, hint=2)
+    height = white_view([900, 700], layout, 2, time=time)
     warped = WarpByScalar(Input=lines, Scalars=['POINTS', 'u'], ScaleFactor=0.35)
     coloured(Tube(Input=warped, Radius=0.012, NumberofSides=12), height, 'u', lut)
-    base = Show(tubes, height)
-    base.DiffuseColor = base.AmbientColor = [0.75, 0.75, 0.75]
-    base.ColorArrayName = [None, '']
+    Show(tubes, height, DiffuseColor=[0.75] * 3, AmbientColor=[0.75] * 3, ColorArrayName=[None, ''])
     camera(height, [0.6, -5.0, 1.6], [0, 0, 0.3], [0, 0, 1], 1.5)
     lut.RescaleTransferFunction(*u_range)  # showing can rescale; fix it again
     Render(plane)
@@ -184,16 +167,15 @@ def network(directory, png, time=None):
 
 def city(directory, png, wanted='2,3,4,5'):
     reader = OpenDataFile(os.path.join(directory, 'solution.pvd'))
-    available = list(reader.TimestepValues)
-    times = [min(available, key=lambda a: abs(a - float(t))) for t in wanted.split(',')]
+    times = [min(reader.TimestepValues, key=lambda a: abs(a - float(t))) for t in wanted.split(',')]
     # the shared colour range: 0 to the max of u over the times. UpdatePipeline(time=0)
     # takes 0 as "no time" and gives the last step: the time goes positionally to the proxy's own
     u_max = 0.0
     for t in times:
         reader.UpdatePipeline(t)
         u_max = max(u_max, reader.PointData['u'].GetRange()[1])
-    roads = Tube(Input=edges(reader), Radius=0.04, NumberofSides=16)
-    junctions = vertices(reader, 0.16)
+    lines, junctions = edges_and_vertices(reader, 0.16)
+    roads = Tube(Input=lines, Radius=0.04, NumberofSides=16)
     lut = u_scale('Turbo', 0.0, u_max)
     (width, height), bar_width = (420, 470), 120
     layout = CreateLayout('city grid')
@@ -202,17 +184,15 @@ def city(directory, png, wanted='2,3,4,5'):
     for time in times:  # a row of cells: split the remaining right part of the layout each time
         left = layout.SplitHorizontal(cell, float(width) / remaining)
         remaining -= width
-        view = white_view([width, height], layout, left)
+        view = white_view([width, height], layout, left, time=time)
         cell = left + 1
-        view.ViewTime = time
         for source in (roads, junctions):
             coloured(source, view, 'u', lut).SetScalarBarVisibility(view, False)
         title(view, 't = %g' % time, 22)
         Render(view)  # the first render resets the camera: set ours after it
         # top view of the square [-1, 6]^2, a margin for the tubes and the title
-        view.CameraPosition, view.CameraFocalPoint, view.CameraViewUp = [2.5, 2.5, 20], [2.5, 2.75, 0], [0, 1, 0]
-        view.CameraParallelProjection = 1
-        view.CameraParallelScale = 3.85 * height / width
+        SetProperties(view, CameraPosition=[2.5, 2.5, 20], CameraFocalPoint=[2.5, 2.75, 0], CameraViewUp=[0, 1, 0],
+                      CameraParallelProjection=1, CameraParallelScale=3.85 * height / width)
         views.append(view)
     views.append(white_view([bar_width, height], layout, cell))  # the colour bar alone
     scalar_bar(lut, views[-1], 'density u', TitleFontSize=18, LabelFontSize=16, Position=[0.12, 0.12],

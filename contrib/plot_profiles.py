@@ -8,17 +8,16 @@
       the first run as the solid reference line, the others as markers;
   plot_profiles.py slice OUT.png RUN...
       case (c) of the layered strip: stress and strain on y = 5, a panel per time;
-  plot_profiles.py solitary OUT.png [--times 840,1500,2850] [--peaks 4] RUN...
-      case (b'): the stress at the times, a panel per time; a markdown table of the peaks;
-  plot_profiles.py edges OUT.png RUN [--snapshot N] [--title T]
-      a network run's edge profiles (default the last snapshot), a panel per edge,
+  plot_profiles.py solitary OUT.png [--times 840,1500,2850] RUN...
+      case (b'): the stress at the times, a panel per time; a markdown table of the 4 highest peaks;
+  plot_profiles.py edges OUT.png RUN [--title T]
+      a network run's edge profiles (the last snapshot), a panel per edge,
       against the exact solution if the run has it, the vertex value at its end.
 """
 import numpy as np
 
 from granular_dg import main, outputs, plot
-
-STYLES = ["-", "--", ":", "-."]
+from granular_dg.plot import STYLES
 
 
 def numbers(text):
@@ -88,7 +87,7 @@ def solitary(a):
         for k, (d, name) in enumerate(map(plot.split_run, a.runs)):
             x, s = (outputs.profile_at(d, t, rtol=1e-6)[c] for c in ("x", "stress"))
             ax.plot(x, s, "-" if k == 0 else "--", lw=1.0 if k == 0 else 0.9, label=name)
-            print("| %s | %g | %s |" % (name, t, ", ".join("%.4f @ %.2f" % q for q in peaks(x, s, a.peaks))))
+            print("| %s | %g | %s |" % (name, t, ", ".join("%.4f @ %.2f" % q for q in peaks(x, s, 4))))
         plot.label(ax, y="stress", title="t = %g" % t, size=9)
     axes[0, 0].legend(fontsize=8)
     axes[-1, 0].set_xlabel("x (periodic, length 300)")
@@ -96,7 +95,7 @@ def solitary(a):
 
 
 def edges(a):
-    found = outputs.edge_profiles(a.run, a.snapshot)
+    found = outputs.edge_profiles(a.run)
     fig, axes = plot.subplots(1, len(found), figsize=(3.1 * len(found), 2.9), sharey=True, squeeze=False)
     for ax, t in zip(axes[0], found):
         name, rest = t.comments[1].split(":", 1)  # "Edge 2: loop, ..."
@@ -109,21 +108,17 @@ def edges(a):
         for e in ends:
             ax.plot([e], [t.value("vertex value")], "o", color="tab:red", ms=5, label="vertex $u_0$")
         plot.label(ax, "x", title="%s (%s)" % (name.strip(), direction), size=9)
-    axes[0, 0].set_ylabel("u")
-    axes[0, 0].legend(fontsize=7, loc="best")
+    plot.label(axes[0, 0], y="u", legend=7, grid=0)
     fig.suptitle((a.title + ", " if a.title else "") + "t = %g" % found[0].time, fontsize=10)
     plot.save(fig, a.out, dpi=130, say=True)
 
 
 if __name__ == "__main__":
     title, xlim = ("--title", dict(default="")), ("--xlim", dict(default=""))
+    many = ("runs", dict(nargs="+"))
     main(__doc__, {
-        "runs": (runs, ["out", ("runs", dict(nargs="+")), ("--column", dict(default="stress")),
-                        ("--times", dict(default="")), xlim, title]),
-        "layered": (layered, ["out", ("runs", dict(nargs="+")), ("--time", dict(type=float, required=True)), xlim,
-                              title]),
-        "slice": (slices, ["out", ("runs", dict(nargs="+"))]),
-        "solitary": (solitary, ["out", ("runs", dict(nargs="+")), ("--times", dict(default="840,1500,2850")),
-                                ("--peaks", dict(type=int, default=4))]),
-        "edges": (edges, ["out", "run", ("--snapshot", dict(type=int, default=-1, help="index (default: the last)")),
-                          title])})
+        "runs": (runs, ["out", many, ("--column", dict(default="stress")), ("--times", dict(default="")), xlim, title]),
+        "layered": (layered, ["out", many, ("--time", dict(type=float, required=True)), xlim, title]),
+        "slice": (slices, ["out", many]),
+        "solitary": (solitary, ["out", many, ("--times", dict(default="840,1500,2850"))]),
+        "edges": (edges, ["out", "run", title])})

@@ -59,7 +59,7 @@ def cheapest(rows):
                              "next best scheme", "CPU s"], table)
 
 
-def main():
+if __name__ == "__main__":
     a = arguments(__doc__, ["build", "out"])
     os.makedirs(a.out, exist_ok=True)
     limits = cfl_limits()
@@ -69,10 +69,7 @@ def main():
     outputs.write_csv(os.path.join(a.out, "schemes.csv"), rows)
     for case in CASES:
         chart(rows, case, os.path.join(a.out, "schemes-%s.png" % case))
+    table = cheapest(rows)
     with open(os.path.join(a.out, "schemes.md"), "w") as f:
-        f.write(cheapest(rows))
-    print(cheapest(rows))
-
-
-if __name__ == "__main__":
-    main()
+        f.write(table)
+    print(table)

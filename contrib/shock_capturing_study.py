@@ -17,15 +17,14 @@ from granular_dg import arguments, outputs, plot
 from granular_dg.compare import stress_l1, value_at
 from granular_dg.run import Runs
 
-# name: (limiter on, indicator, subcell blending)
+# name: (limiter on, indicator, subcell blending, line style)
 CONFIGS = {
-    "none": (False, "everywhere", False),
-    "everywhere": (True, "everywhere", False),
-    "indicator": (True, "modal_energy", False),
-    "blending": (False, "everywhere", True),
-    "both": (True, "modal_energy", True),
+    "none": (False, "everywhere", False, "k^:"),
+    "everywhere": (True, "everywhere", False, "o-"),
+    "indicator": (True, "modal_energy", False, "D-."),
+    "blending": (False, "everywhere", True, "s--"),
+    "both": (True, "modal_energy", True, "v-"),
 }
-STYLES = {"none": "k^:", "everywhere": "o-", "indicator": "D-.", "blending": "s--", "both": "v-"}
 HOPPER = ["Time stepping/final time=0.5", "Output/output times=", "Hopper output/step series interval=0",
           "Hopper output/sample points=2001"]
 # the limiter, the meshes (the one of --quick) and the reference: its file and its --set overrides
@@ -58,7 +57,7 @@ CASES = {
 
 def case_row(runs, ref, case, cells, config):
     c = CASES[case]
-    limiter_on, indicator, blending = CONFIGS[config]
+    limiter_on, indicator, blending, _ = CONFIGS[config]
     sets = ["Output/write vtu=false", "%s=%d" % (c["mesh"], cells),
             "Limiter/scheme=" + (c["limiter"] if limiter_on else "none"), "Limiter/indicator=" + indicator,
             "Limiter/subcell blending=%s" % ("true" if blending else "false")]
@@ -92,9 +91,9 @@ def chart(rows, cases, runs):
     for ax in axes.flat[len(cases):]:
         ax.set_visible(False)
     for ax, case in zip(axes.flat, cases):
-        for config in CONFIGS:
+        for config, (*_, style) in CONFIGS.items():
             sel = outputs.select(rows, case=case, config=config)
-            ax.loglog([r["time_loop_cpu_s"] for r in sel], [r["error"] for r in sel], STYLES[config], label=config)
+            ax.loglog([r["time_loop_cpu_s"] for r in sel], [r["error"] for r in sel], style, label=config)
         plot.label(ax, "CPU time of the time loop [s]", title=CASES[case]["title"], size=9)
     for row in axes:
         row[0].set_ylabel("error against the reference")
@@ -102,7 +101,7 @@ def chart(rows, cases, runs):
     runs.save(fig, "shock-capturing")
 
 
-def main():
+if __name__ == "__main__":
     a = arguments(__doc__, ["build", "out", "ref_dir", ("--quick", dict(action="store_true", help="one mesh per case")),
                             ("--cases", dict(default=",".join(CASES)))])
     cases, rows = a.cases.split(","), []
@@ -118,7 +117,3 @@ def main():
                 print(rows[-1], flush=True)
     runs.csv("shock-capturing", rows)
     chart(rows, cases, runs)
-
-
-if __name__ == "__main__":
-    main()

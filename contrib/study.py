@@ -17,6 +17,7 @@ import math
 import os
 import textwrap
 import time
+from pathlib import Path
 
 from granular_dg import arguments, outputs, plot
 from granular_dg.compare import stress_l1
@@ -54,28 +55,22 @@ HOPPER_QUIET = ["Hopper output/step series interval=0", "Hopper output/sample po
 SCENES = {
     # m = 1, t = 4 against the closed form (the frozen region included)
     "column": dict(
-        prm="tests/column/m1_base.prm", mesh="Mesh/cells",
-        cells=[25, 50, 100, 200, 400, 800, 1600, 3200], quick_cells=[50, 200],
-        degrees=[0, 1, 2, 3], quick_degrees=[1, 2], cfl=lambda p: 0.9 / (2 * p + 1),
+        prm="tests/column/m1_base.prm", mesh="Mesh/cells", cells=[25, 50, 100, 200, 400, 800, 1600, 3200],
+        quick_cells=[50, 200], degrees=[0, 1, 2, 3], quick_degrees=[1, 2], cfl=lambda p: 0.9 / (2 * p + 1),
         max_cells={3: 800},  # P3 is the most expensive per accuracy here
-        error=sum_l1, error_name="L1 error (strain + velocity) at t = 4",
-        targets=[1e-2, 1e-3], extra=[]),
+        error=sum_l1, error_name="L1 error (strain + velocity) at t = 4", targets=[1e-2, 1e-3]),
     # the smooth periodic linear wave of the layered_strip scene (1D)
     "layered_1d": dict(
-        prm="prm/elasticity_linear_wave.prm", mesh="Mesh/cells x",
-        cells=[8, 16, 32, 64, 128, 256], quick_cells=[8, 32],
-        degrees=[0, 1, 2, 3, 4], quick_degrees=[1, 2],
+        prm="prm/elasticity_linear_wave.prm", mesh="Mesh/cells x", cells=[8, 16, 32, 64, 128, 256],
+        quick_cells=[8, 32], degrees=[0, 1, 2, 3, 4], quick_degrees=[1, 2],
         # 0.9/(2p+1), but P4 blows up there (its limit is ~0.09): 0.07
         cfl=lambda p: 0.07 if p == 4 else 0.9 / (2 * p + 1),
-        error=sum_l1, error_name="L1 error (strain + velocity) at t = 1",
-        targets=[1e-4, 1e-7], extra=[]),
+        error=sum_l1, error_name="L1 error (strain + velocity) at t = 1", targets=[1e-4, 1e-7]),
     # the 2D strip scene on the same wave, 2 cells across in y (periodic)
     "layered_2d": dict(
-        prm="prm/elasticity_linear_wave.prm", mesh="Mesh/cells x",
-        cells=[8, 16, 32, 64], quick_cells=[8, 16],
+        prm="prm/elasticity_linear_wave.prm", mesh="Mesh/cells x", cells=[8, 16, 32, 64], quick_cells=[8, 16],
         degrees=[1, 2, 3], quick_degrees=[2], cfl=lambda p: 0.9 / (2 * p + 1),
-        error=sum_l1, error_name="L1 error (strain + velocity) at t = 1",
-        targets=[1e-4, 1e-6],
+        error=sum_l1, error_name="L1 error (strain + velocity) at t = 1", targets=[1e-4, 1e-6],
         extra=["Mesh/dimension=2", "Mesh/cells y=2", "Mesh/y min=0", "Mesh/y max=0.25",
                "Boundary conditions/bottom=periodic", "Boundary conditions/top=periodic",
                "Initial condition/velocity=-0.1*sin(2*pi*x); 0",
@@ -84,9 +79,8 @@ SCENES = {
     # without volume (the paper's vertex cell caps every degree at order 1,
     # doc/network.md)
     "network": dict(
-        prm="prm/network_smooth.prm", mesh="Network/cells per unit length",
-        cells=[8, 16, 32, 64, 128, 256, 512], quick_cells=[8, 32],
-        degrees=[0, 1, 2, 3], quick_degrees=[1, 2],
+        prm="prm/network_smooth.prm", mesh="Network/cells per unit length", cells=[8, 16, 32, 64, 128, 256, 512],
+        quick_cells=[8, 32], degrees=[0, 1, 2, 3], quick_degrees=[1, 2],
         cfl=lambda p: {0: 0.5, 1: 0.3, 2: 0.18, 3: 0.03}[p],
         max_cells={3: 256},  # P3 at 512 cells: 1e-11, the round-off floor, 22 s CPU
         error=network_l1, error_name="L1 error (edges + vertex) at t = 0.5",
@@ -94,13 +88,10 @@ SCENES = {
     # the 30 deg cone marched to tau = 1 against the exact radial field,
     # without the limiter (with it P2 and P3 are capped at 3rd order, doc/hopper.md)
     "hopper": dict(
-        prm="prm/hopper_radial_cone.prm", mesh="Hopper/cells",
-        cells=[25, 50, 100, 200, 400], quick_cells=[25, 100],
-        degrees=[1, 2, 3], quick_degrees=[1, 2],
-        cfl=lambda p: {1: 1 / 3., 2: 1 / 5., 3: 0.12}[p],
+        prm="prm/hopper_radial_cone.prm", mesh="Hopper/cells", cells=[25, 50, 100, 200, 400], quick_cells=[25, 100],
+        degrees=[1, 2, 3], quick_degrees=[1, 2], cfl=lambda p: {1: 1 / 3., 2: 1 / 5., 3: 0.12}[p],
         max_cells={2: 200, 3: 200},
-        error=hopper_radial, error_name="relative difference to the radial field at tau = 1",
-        targets=[1e-3, 1e-5],
+        error=hopper_radial, error_name="relative difference to the radial field at tau = 1", targets=[1e-3, 1e-5],
         extra=["Time stepping/final time=1", "Limiter/scheme=none"] + HOPPER_QUIET),
 }
 
@@ -115,20 +106,18 @@ FLAGGED = ["Limiter/indicator=modal_energy"]
 BLENDING = ["Limiter/subcell blending=true"]
 
 
-# Stability maps. choices: (label, --set overrides); quick_choices: indices
-# used with --quick; p0_choices: the choices run at degree 0 (default all;
-# degree 0 has no slopes to limit, so choices that differ only in the
-# limiter are one scheme there); factors: see stability().
+# Stability maps. choices: (label, --set overrides); quick_choices: indices used with --quick
+# (default none); p0_choices: the choices run at degree 0 (default all; degree 0 has no slopes
+# to limit, so choices that differ only in the limiter are one scheme there); factors: see
+# stability(); extra: the --set overrides of every run (default none); blowup: see classify() (default 1).
 STABILITY = {
     # the smooth linear wave in one material: LLF = impedance = upwind flux here
     "layered_1d": dict(
         scene="layered_1d", prm="prm/elasticity_linear_wave.prm", mesh="Mesh/cells x", cells=32,
         case="smooth linear wave, one material, 32 cells, t = 1 (exact solution)",
-        extra=[], error=sum_l1, energy=True, blowup=1.0,
-        degrees=[0, 1, 2, 3, 4], quick_degrees=[1, 2],
+        error=sum_l1, energy=True, degrees=[0, 1, 2, 3, 4], quick_degrees=[1, 2],
         factors=[0.25, 0.5, 0.8, 1.0, 1.2, 1.5, 2.0, 3.0], quick_factors=[0.5, 1.5],
-        choices=[("LLF, no limiter", flux_limiter("local_lax_friedrichs", "none"))],
-        quick_choices=[0]),
+        choices=[("LLF, no limiter", flux_limiter("local_lax_friedrichs", "none"))], quick_choices=[0]),
     # case (b) of doc/layered_strip.md shortened (layers of width 1, rho = K = 3 | 1,
     # 4 cells per layer, t = 50) against a P3 impedance run at 32 cells per layer
     "layered_interfaces": dict(
@@ -137,36 +126,30 @@ STABILITY = {
         case="layered strip (rho = K = 3 | 1, layers of width 1), 4 cells per layer, t = %g "
              "(reference: P3 impedance, 32 cells per layer; 8 with --quick)" % study_failures.LAYERED_T,
         extra=study_failures.LAYERED_SHORT, setup=study_failures.layered_reference_sets,
-        error=strain_l1, blowup=100.0,
-        degrees=[1, 2, 3], quick_degrees=[2],
+        error=strain_l1, blowup=100.0, degrees=[1, 2, 3], quick_degrees=[2],
         choices=[("LLF on (eps, m), no limiter", flux_limiter("local_lax_friedrichs", "none")),
                  ("LLF + componentwise", flux_limiter("local_lax_friedrichs", "componentwise")),
                  ("LLF + characteristic", flux_limiter("local_lax_friedrichs", "characteristic")),
                  ("impedance, no limiter", flux_limiter("impedance", "none")),
                  ("impedance + flux_variables", flux_limiter("impedance", "flux_variables")),
-                 ("impedance + flux_variables, flagged cells",
-                  flux_limiter("impedance", "flux_variables") + FLAGGED),
-                 ("impedance, subcell blending", flux_limiter("impedance", "none") + BLENDING)],
-        quick_choices=[1, 3]),
+                 ("impedance + flux_variables, flagged cells", flux_limiter("impedance", "flux_variables") + FLAGGED),
+                 ("impedance, subcell blending", flux_limiter("impedance", "none") + BLENDING)], quick_choices=[1, 3]),
     # the column m = 1 (friction projection) against the closed form
     "column": dict(
         scene="column", prm="tests/column/m1_base.prm", mesh="Mesh/cells", cells=200,
         case="column m = 1, 200 cells, t = 4 (closed form), friction projection",
-        extra=[], error=sum_l1, blowup=1.0, p0_choices=[0],
-        degrees=[0, 1, 2, 3], quick_degrees=[1],
+        error=sum_l1, p0_choices=[0], degrees=[0, 1, 2, 3], quick_degrees=[1],
         choices=[("characteristic", ["Limiter/scheme=characteristic"]),
                  ("componentwise", ["Limiter/scheme=componentwise"]),
                  ("no limiter", ["Limiter/scheme=none"]),
                  ("characteristic, flagged cells", ["Limiter/scheme=characteristic"] + FLAGGED),
-                 ("subcell blending", ["Limiter/scheme=none"] + BLENDING)],
-        quick_choices=[0, 1]),
+                 ("subcell blending", ["Limiter/scheme=none"] + BLENDING)], quick_choices=[0, 1]),
     # Burgers on the star graph with a shock through the vertex (exact solution)
     "network": dict(
         scene="network", prm="prm/network_example_7_5.prm", mesh="Network/cells per unit length",
         cells=64, case="example 7.5 (Burgers, shock through the vertex), 64 cells per edge, "
                        "t = 0.5 (exact solution)",
-        extra=[], error=network_l1, blowup=1.0,
-        degrees=[0, 1, 2, 3], quick_degrees=[1],
+        error=network_l1, degrees=[0, 1, 2, 3], quick_degrees=[1],
         choices=[("upwind (Godunov) + componentwise", flux_limiter("upwind", "componentwise")),
                  ("LLF + componentwise", flux_limiter("local_lax_friedrichs", "componentwise")),
                  ("upwind (Godunov), no limiter", flux_limiter("upwind", "none")),
@@ -177,14 +160,13 @@ STABILITY = {
     "hopper": dict(
         scene="hopper", prm="prm/hopper_radial_cone.prm", mesh="Hopper/cells", cells=50,
         case="30 deg cone, radial field marched to tau = 1 on 50 cells (exact)",
-        extra=["Time stepping/final time=1"] + HOPPER_QUIET, error=hopper_radial, blowup=1.0,
+        extra=["Time stepping/final time=1"] + HOPPER_QUIET, error=hopper_radial,
         degrees=[1, 2, 3], quick_degrees=[1],
         choices=[("Roe-LF + characteristic (GM)", flux_limiter("roe_lax_friedrichs", "characteristic")),
                  ("Roe-LF, no limiter", flux_limiter("roe_lax_friedrichs", "none")),
                  ("LLF + characteristic", flux_limiter("local_lax_friedrichs", "characteristic")),
                  ("Roe-LF + characteristic, flagged cells",
-                  flux_limiter("roe_lax_friedrichs", "characteristic") + FLAGGED)],
-        quick_choices=[]),
+                  flux_limiter("roe_lax_friedrichs", "characteristic") + FLAGGED)]),
 }
 DEFAULT_FACTORS = [0.5, 1.0, 1.5, 2.0, 3.0]
 QUICK_FACTORS = [0.5, 1.5]
@@ -197,15 +179,13 @@ def work_precision(ctx, name, sc):
     def one(item):
         p, n = item
         cfl = sc["cfl"](p)
-        run = ctx.run(os.path.join(name, "wp-p%d-n%d" % (p, n)), sc["prm"], sc["extra"] + [
+        run = ctx.run(os.path.join(name, "wp-p%d-n%d" % (p, n)), sc["prm"], sc.get("extra", []) + [
             "Discretization/degree=%d" % p, "%s=%d" % (sc["mesh"], n), "Time stepping/CFL number=%.12g" % cfl])
         s = run.summary
         e = sc["error"](s, run.directory) if run.code == 0 else NAN
-        r = dict(scene=name, degree=p, cells=n, cfl=cfl, exit=run.code, error=e,
-                 n_dofs=s.get("n_dofs", ""), steps=s.get("n_time_steps", ""),
-                 time_loop_cpu_s=cpu_loop(s), run_wall_s=run.wall_s, load=s["_load"])
-        print("%s P%d n=%d: exit %d error %.3e cpu %.3g s" % (name, p, n, run.code, e, r["time_loop_cpu_s"]),
-              flush=True)
+        r = dict(scene=name, degree=p, cells=n, cfl=cfl, exit=run.code, error=e, n_dofs=s.get("n_dofs", ""),
+                 steps=s.get("n_time_steps", ""), time_loop_cpu_s=cpu_loop(s), run_wall_s=run.wall_s, load=s["_load"])
+        print("%s P%d n=%d: exit %d error %.3e cpu %.3g s" % (name, p, n, run.code, e, cpu_loop(s)), flush=True)
         return r
 
     rows = ctx.pmap(one, [(p, n) for p in degrees for n in ctx.pick(sc, "cells")
@@ -267,12 +247,12 @@ def stability(ctx, name, sp):
     smallest non-stable value to a relative width of 5 % (15 % with --quick);
     the pairs run --jobs at a time."""
     degrees = ctx.pick(sp, "degrees")
-    choices = [sp["choices"][i] for i in sp["quick_choices"]] if ctx.quick else sp["choices"]
+    choices = [sp["choices"][i] for i in sp.get("quick_choices", [])] if ctx.quick else sp["choices"]
     if not choices or not degrees:
         return [], []
     factors = sp.get("quick_factors", QUICK_FACTORS) if ctx.quick else sp.get("factors", DEFAULT_FACTORS)
     width = 0.15 if ctx.quick else 0.05
-    extra = sp["extra"] + (sp["setup"](ctx) if "setup" in sp else [])
+    extra = sp.get("extra", []) + (sp["setup"](ctx) if "setup" in sp else [])
     p0 = [sp["choices"][i] for i in sp.get("p0_choices", range(len(sp["choices"])))]
 
     def pair(item):
@@ -285,7 +265,7 @@ def stability(ctx, name, sp):
                 "Time stepping/CFL number=%.12g" % cfl, "Time stepping/check stability limit=false"])
             e = sp["error"](run.summary, run.directory) if run.code == 0 else NAN
             grew = energy_grew(run.directory) if run.code == 0 and sp.get("energy") else None
-            c = classify(run.code, run.stderr, e, e0, grew, sp["blowup"])
+            c = classify(run.code, run.stderr, e, e0, grew, sp.get("blowup", 1.0))
             rows.append(dict(map=name, scene=sp["scene"], choice=label, degree=p, cfl=cfl, exit=run.code,
                              error=e, state=c, time_loop_cpu_s=cpu_loop(run.summary), message=run.stderr[:200]))
             print("%s [%s] P%d CFL %.4g: %s (error %.3e)" % (name, label, p, cfl, c, e), flush=True)
@@ -302,20 +282,18 @@ def stability(ctx, name, sp):
             if any(c != "stable" for _, c in states) or cfl <= states[-1][0]:
                 break
             states.append((cfl, one(cfl, e0)[0]))
-        stable = [cfl for cfl, c in states if c == "stable"]
-        lo = max(stable) if stable else None
-        above = [cfl for cfl, c in states if c != "stable" and lo is not None and cfl > lo]
-        hi = min(above) if above else None
-        while lo is not None and hi is not None and (hi - lo) / lo > width:
+        lo = max((cfl for cfl, c in states if c == "stable"), default=None)
+        hi = min((cfl for cfl, c in states if c != "stable" and lo is not None and cfl > lo), default=None)
+        while hi is not None and (hi - lo) / lo > width:  # a hi is above a lo
             mid = 0.5 * (lo + hi)
             lo, hi = (mid, hi) if one(mid, e0)[0] == "stable" else (lo, mid)
-        first_bad = [c for cfl, c in sorted((r["cfl"], r["state"]) for r in rows) if hi is not None and cfl >= hi]
+        above = next((c for cfl, c in sorted((r["cfl"], r["state"]) for r in rows) if hi is not None and cfl >= hi),
+                     "none up to CFL %.3g" % max(states)[0])
         none = lo is None
         return rows, dict(map=name, scene=sp["scene"], choice=label, degree=p, cfl_limit="" if none else lo,
                           first_unstable_cfl="" if hi is None else hi,
                           limit_times_2p_plus_1="" if none else lo * (2 * p + 1), linear_rk3_limit=LINEAR_RK3[p],
-                          limit_over_linear="" if none else lo / LINEAR_RK3[p],
-                          state_above=first_bad[0] if first_bad else "none up to CFL %.3g" % max(states)[0])
+                          limit_over_linear="" if none else lo / LINEAR_RK3[p], state_above=above)
 
     results = ctx.pmap(pair, [(c, p) for c in choices for p in degrees if p > 0 or c in p0])
     rows, limits = [r for rr, _ in results for r in rr], [l for _, l in results]
@@ -356,21 +334,18 @@ def stability_chart(ctx, name, sp, choices, degrees, rows, limits):
                 key = "bisected limit" if bounded else "stable to the end of the grid"
                 handles[key], = ax.plot([l["cfl_limit"]] * 2, [l["degree"] - 0.38, l["degree"] + 0.38],
                                         "k-" if bounded else "k:", lw=1.6)
-                ax.annotate(("%.3g" if bounded else ">= %.3g") % l["cfl_limit"],
-                            (l["cfl_limit"], l["degree"]), xytext=(3, 2), textcoords="offset points",
-                            fontsize=6.5)
+                ax.annotate(("%.3g" if bounded else ">= %.3g") % l["cfl_limit"], (l["cfl_limit"], l["degree"]),
+                            xytext=(3, 2), textcoords="offset points", fontsize=6.5)
         ran = sorted({r["degree"] for r in select(rows, choice=label)})
         handles["linear RK3-DG limit"], = ax.plot([LINEAR_RK3[p] for p in ran], ran, "b|", ms=11, mew=1.0)
-        ax.set_yticks(degrees)
-        ax.set_yticklabels(["P%d" % p for p in degrees], fontsize=7)
+        ax.set_yticks(degrees, ["P%d" % p for p in degrees], fontsize=7)
         ax.set_ylim(min(degrees) - 0.6, max(degrees) + 0.6)
         ax.set_title(label, fontsize=8, loc="left", pad=2)
         ax.grid(alpha=0.3, which="both")
     ax = axes[-1, 0]
     ax.set_xscale("log")
-    ax.xaxis.set_major_locator(LogLocator(subs=(1, 2, 3, 5)))
-    ax.xaxis.set_major_formatter(FormatStrFormatter("%g"))
-    ax.xaxis.set_minor_formatter(FormatStrFormatter(""))
+    ax.xaxis.set(major_locator=LogLocator(subs=(1, 2, 3, 5)), major_formatter=FormatStrFormatter("%g"),
+                 minor_formatter=FormatStrFormatter(""))
     ax.tick_params(axis="x", labelsize=7)
     ax.set_xlabel("CFL number", fontsize=8)
     fig.legend(list(handles.values()), list(handles.keys()), fontsize=7, loc="lower center",
@@ -383,12 +358,11 @@ def stability_chart(ctx, name, sp, choices, degrees, rows, limits):
 def limits_table(ctx, limits):
     ctx.csv("stability-limits", limits)
     number = lambda fmt, x: fmt % x if x != "" else ""
-    with open(os.path.join(ctx.out, "stability-limits.md"), "w") as f:
-        f.write(outputs.markdown(
-            ["map", "choice", "degree", "limit (bisected)", "x (2p+1)", "/ linear RK3-DG limit", "above the limit"],
-            [[l["map"], l["choice"], "P%d" % l["degree"], number("%.4g", l["cfl_limit"]) or "none stable",
-              number("%.3g", l["limit_times_2p_plus_1"]), number("%.3g", l["limit_over_linear"]), l["state_above"]]
-             for l in limits]))
+    Path(ctx.out, "stability-limits.md").write_text(outputs.markdown(
+        ["map", "choice", "degree", "limit (bisected)", "x (2p+1)", "/ linear RK3-DG limit", "above the limit"],
+        [[l["map"], l["choice"], "P%d" % l["degree"], number("%.4g", l["cfl_limit"]) or "none stable",
+          number("%.3g", l["limit_times_2p_plus_1"]), number("%.3g", l["limit_over_linear"]), l["state_above"]]
+         for l in limits]))
 
 
 def cheapest(ctx, all_rows):
@@ -400,9 +374,8 @@ def cheapest(ctx, all_rows):
             ok = [r for r in rows if r["error"] <= t]
             if ok:
                 b = min(ok, key=lambda r: r["time_loop_cpu_s"])
-                res.append(dict(scene=name, target_error=t, degree=b["degree"], cells=b["cells"],
-                                cfl="%.4g" % b["cfl"], error="%.3e" % b["error"],
-                                time_loop_cpu_s="%.4g" % b["time_loop_cpu_s"],
+                res.append(dict(scene=name, target_error=t, degree=b["degree"], cells=b["cells"], cfl="%.4g" % b["cfl"],
+                                error="%.3e" % b["error"], time_loop_cpu_s="%.4g" % b["time_loop_cpu_s"],
                                 run_wall_s="%.3g" % b["run_wall_s"], load=b["load"]))
             else:
                 best = min(rows, key=lambda r: r["error"])
@@ -410,19 +383,17 @@ def cheapest(ctx, all_rows):
                                 error="best %.3e (P%d, %d cells)" % (best["error"], best["degree"], best["cells"]),
                                 time_loop_cpu_s="", run_wall_s="", load=""))
     ctx.csv("cheapest", res)
-    with open(os.path.join(ctx.out, "cheapest.md"), "w") as f:
-        f.write(outputs.markdown(
-            ["scene", "target error", "degree", "cells", "CFL", "error", "CPU time loop [s]", "wall run [s]", "load"],
-            [[r["scene"], "%g" % r["target_error"]] + [r[k] for k in list(r)[2:]] for r in res]))
+    Path(ctx.out, "cheapest.md").write_text(outputs.markdown(
+        ["scene", "target error", "degree", "cells", "CFL", "error", "CPU time loop [s]", "wall run [s]", "load"],
+        [[r["scene"], "%g" % r["target_error"]] + [r[k] for k in list(r)[2:]] for r in res]))
 
 
 if __name__ == "__main__":
     a = arguments(__doc__, [
         "build", "out", ("--quick", dict(action="store_true", help="a few meshes, degrees and choices (a smoke run)")),
         ("--jobs", dict(type=int, default=2, help="granular_dg processes at a time")),
-        ("--only", dict(default=",".join(SCENES), help="scenes (work precision, stability maps, failure modes)")),
-        ("--skip-work-precision", dict(action="store_true")), ("--skip-stability", dict(action="store_true")),
-        ("--skip-failures", dict(action="store_true"))])
+        ("--only", dict(default=",".join(SCENES), help="scenes (work precision, stability maps, failure modes)"))]
+        + [("--skip-" + part, dict(action="store_true")) for part in ("work-precision", "stability", "failures")])
     ctx = Runs(a.build, a.out, a.quick, a.jobs, subdir="runs", sets=NO_SNAPSHOTS, formats=("svg",))
     only, parts, all_rows, limits = a.only.split(","), [], [], []
     l0, t0, c0 = load(), time.time(), os.times()
@@ -451,6 +422,5 @@ if __name__ == "__main__":
                    "quick" if a.quick else "full", ",".join(only), a.jobs, time.time() - t0,
                    (c1.children_user - c0.children_user) + (c1.children_system - c0.children_system),
                    l0, load(), ctx.count["executed"], ctx.count["reused"], "; ".join(parts)))
-    with open(os.path.join(a.out, "runtime.txt"), "w") as f:
-        f.write(runtime)
+    Path(a.out, "runtime.txt").write_text(runtime)
     print(runtime)

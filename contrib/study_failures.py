@@ -49,9 +49,8 @@ def layered_reference_sets(ctx):
     --set that makes a run compute its errors against it."""
     per_layer = 8 if ctx.quick else 32
     run = ctx.run("layered_reference/p3-n%d" % per_layer, "prm/layered_1d.prm", LAYERED_SHORT + [
-        "Mesh/cells x=%d" % (LAYERS * per_layer), "Discretization/degree=3",
-        "Discretization/numerical flux=impedance", "Limiter/scheme=none",
-        "Time stepping/CFL number=0.1", "Output/write modes=true"])
+        "Mesh/cells x=%d" % (LAYERS * per_layer), "Discretization/degree=3", "Discretization/numerical flux=impedance",
+        "Limiter/scheme=none", "Time stepping/CFL number=0.1", "Output/write modes=true"])
     if run.code != 0:
         raise RuntimeError("the layered reference run failed: " + run.stderr)
     return ["Exact solution/reference file=" + outputs.latest(run.directory, "modes")]
@@ -71,16 +70,15 @@ def interfaces(ctx):
     def one(item):
         (label, flux, limiter, _), p, n = item
         run = ctx.run("interfaces/%s-%s-p%d-n%d" % (flux, limiter, p, n), "prm/layered_1d.prm", LAYERED_SHORT + ref + [
-            "Mesh/cells x=%d" % (LAYERS * n), "Discretization/degree=%d" % p,
-            "Discretization/numerical flux=" + flux, "Limiter/scheme=" + limiter,
-            "Time stepping/CFL number=%.12g" % (0.8 / (2 * p + 1))])
+            "Mesh/cells x=%d" % (LAYERS * n), "Discretization/degree=%d" % p, "Discretization/numerical flux=" + flux,
+            "Limiter/scheme=" + limiter, "Time stepping/CFL number=%.12g" % (0.8 / (2 * p + 1))])
         s = run.summary
         return dict(config=label, flux=flux, limiter=limiter, degree=p, cells_per_layer=n, exit=run.code,
                     l1_strain_error=strain_l1(s) if run.code == 0 else NAN,
-                    **diagnostics(s, "interface_stress_jump_max", "interface_stress_jump_mean",
-                                  "min_strain", "max_strain"),
-                    time_loop_cpu_s=s.get("time_loop_cpu_s", NAN),
-                    final_time=s.get("final_time", ""), message=run.stderr[:160])
+                    **diagnostics(s, "interface_stress_jump_max", "interface_stress_jump_mean", "min_strain",
+                                  "max_strain"),
+                    time_loop_cpu_s=s.get("time_loop_cpu_s", NAN), final_time=s.get("final_time", ""),
+                    message=run.stderr[:160])
 
     rows = ctx.pmap(one, [(c, p, n) for c in INTERFACE_CONFIGS for p in degrees for n in per_layer])
     ctx.csv("failure-interfaces", rows)
@@ -91,24 +89,20 @@ def interfaces(ctx):
         for p in degrees:
             sel = select(rows, config=label, degree=p)
             ok = [r for r in sel if r["exit"] == 0]
-            style = dict(marker={1: "o", 2: "s", 3: "^"}[p], color=color, ms=5)
+            style = dict(marker={1: "o", 2: "s", 3: "^"}[p], color=color, ms=5, ls="--" if "LLF" in label else "-")
             if ok:
                 x = [r["cells_per_layer"] for r in ok]
-                ls = "--" if "LLF" in label else "-"
-                ax[0].loglog(x, [r["l1_strain_error"] for r in ok], ls, label="%s, P%d" % (label, p), **style)
-                ax[1].loglog(x, [r["interface_stress_jump_max"] for r in ok], ls, **style)
-            for r in sel:
-                if r["exit"] != 0:  # stopped: mark at the top of the left panel
-                    ax[0].annotate("exit %d" % r["exit"], (r["cells_per_layer"], 1), fontsize=6,
-                                   color=color, rotation=90)
+                ax[0].loglog(x, [r["l1_strain_error"] for r in ok], label="%s, P%d" % (label, p), **style)
+                ax[1].loglog(x, [r["interface_stress_jump_max"] for r in ok], **style)
+            for r in (r for r in sel if r["exit"] != 0):  # stopped: mark at the top of the left panel
+                ax[0].annotate("exit %d" % r["exit"], (r["cells_per_layer"], 1), fontsize=6, color=color, rotation=90)
             cells = ", ".join("%d: %s (jump %s)" % (r["cells_per_layer"], fmt(r["l1_strain_error"]),
                                                     fmt(r["interface_stress_jump_max"]))
                               if r["exit"] == 0 else "%d: exit %d at t = %s" % (
                                   r["cells_per_layer"], r["exit"], fmt(r["final_time"], 4)) for r in sel)
             ok = [r for r in ok if r["l1_strain_error"] > 0]
-            eoc = "; EOC finest pair %.2f" % (
-                math.log(ok[-2]["l1_strain_error"] / ok[-1]["l1_strain_error"]) /
-                math.log(ok[-1]["cells_per_layer"] / ok[-2]["cells_per_layer"])) if len(ok) >= 2 else ""
+            e, n = [r["l1_strain_error"] for r in ok[-2:]], [r["cells_per_layer"] for r in ok[-2:]]
+            eoc = "; EOC finest pair %.2f" % math.log(e[0] / e[1], n[1] / n[0]) if len(ok) >= 2 else ""
             notes.append("  - %s, P%d, cells per layer %s%s" % (label, p, cells, eoc))
     for a, y in zip(ax, ("L1 error of the strain", "largest stress jump across an interface")):
         plot.label(a, "cells per layer", y + " at t = %g" % LAYERED_T)
@@ -168,9 +162,8 @@ def friction(ctx):
     for row, (xl, key) in enumerate((("cells on (0, 10) (CFL 0.2, dt ~ dx)", "cells"),
                                      ("time step dt (400 cells)", "dt"))):
         for col, y in enumerate(("velocity sign flips", "|strain drift| of the probe, t = 4..8")):
-            plot.label(ax[row, col], xl, y)
+            plot.label(ax[row, col], xl, y, legend=7 if row == col == 0 else None)
             plot.log_ticks(ax[row, col], [r[key] for r in rows if r["exit"] == 0 and math.isfinite(r[key])])
-    ax[0, 0].legend(fontsize=7)
     fig.suptitle("Coulomb friction in the column (m = 1, t = 8): chatter (velocity sign flips) and creep "
                  "of stuck material (strain drift)\nof the explicit treatments against the projection "
                  "(an exact 0 is drawn at 0.5 flips and 1e-17 drift)", fontsize=9)
@@ -194,9 +187,8 @@ def rk3(ctx):
         y = [float(r["error"]) for r in sel]
         line, = ax.loglog(x, y, "-", lw=0.8, label="P%d" % p)
         for xi, yi, r in zip(x, y, sel):
-            ax.scatter([xi], [yi], marker={"stable": "o", "oscillatory": "s", "blown up": "x",
-                                           "inadmissible": "D"}.get(r["state"], "+"),
-                       color=line.get_color(), s=18)
+            marker = {"stable": "o", "oscillatory": "s", "blown up": "x", "inadmissible": "D"}.get(r["state"], "+")
+            ax.scatter([xi], [yi], marker=marker, color=line.get_color(), s=18)
             out.append(dict(degree=p, cfl=r["cfl"], cfl_over_linear_limit=xi, error=yi, state=r["state"]))
         good = [r for r in out[-len(sel):] if r["state"] == "stable"]
         bad = [r for r in out[-len(sel):] if r["state"] != "stable" and good and
@@ -243,8 +235,8 @@ def shock(ctx):
         r = dict(limiter=label, degree=p, cfl=cfl, exit=run.code, message=run.stderr[:160],
                  time_loop_cpu_s=run.summary.get("time_loop_cpu_s", NAN))
         if run.code == 0:
-            prof = outputs.latest(run.directory, "profile")
-            strain = outputs.read_table(prof)["strain"]
+            prof = outputs.read_table(outputs.latest(run.directory, "profile"))
+            strain = prof["strain"]
             r.update(final_max_strain=strain.max(), final_min_strain=strain.min(),
                      overshoot_pct=100 * max(0., strain.max() - eps_w) / eps_w,
                      undershoot_pct=100 * max(0., -strain.min()) / eps_w, profile=prof)
@@ -256,30 +248,26 @@ def shock(ctx):
     fig, ax = plot.subplots(1, 2, figsize=(11, 4.2))
     for (label, lim), c in zip(limiters, ("tab:blue", "tab:red")):
         sel = select(done, limiter=label)
-        ax[0].plot([r["degree"] for r in sel], [r["overshoot_pct"] for r in sel], "o-", color=c,
-                   label="overshoot above eps_w, " + label)
-        ax[0].plot([r["degree"] for r in sel], [r["undershoot_pct"] for r in sel], "s--", color=c,
-                   label="undershoot below 0, " + label)
+        for key, style, what in (("overshoot", "o-", "above eps_w"), ("undershoot", "s--", "below 0")):
+            ax[0].plot([r["degree"] for r in sel], [r[key + "_pct"] for r in sel], style, color=c,
+                       label="%s %s, %s" % (key, what, label))
     top = max([r.get("overshoot_pct", 0) for r in rows] + [r.get("undershoot_pct", 0) for r in rows] + [1])
-    ax[0].set_ylim(-0.05 * top, 1.6 * top)  # room for the legend above the curves
-    ax[0].set_xticks(degrees)
+    ax[0].set(ylim=(-0.05 * top, 1.6 * top), xticks=degrees)  # room for the legend above the curves
     plot.label(ax[0], "degree", "%% of eps_w = %.4f at t = %g" % (eps_w, t_end), legend=7, which="major")
     # the profiles at the shock: the steepest drop of the last limited run's
     limited = select(done, limiter=limiters[0][0])
     if limited:
-        t = outputs.read_table(limited[-1]["profile"])
+        t = limited[-1]["profile"]
         xs = t["x"][np.argmin(np.diff(t["strain"])) if len(t) > 1 else 0]
         for r in done:
-            t = outputs.read_table(r["profile"])
-            x, e = t["x"], t["strain"]
+            x, e = r["profile"]["x"], r["profile"]["strain"]
             w = (x > xs - 10) & (x < xs + 5)
             unlimited = r["limiter"] == limiters[1][0]
             ax[1].plot(x[w], e[w], "-" if unlimited else ":", lw=1,
                        label="P%d, %s" % (r["degree"], "no limiter" if unlimited else "limited"))
         ax[1].axhline(eps_w, color="gray", lw=0.6, ls="--")
         ax[1].axhline(0, color="gray", lw=0.6, ls="--")
-        plot.label(ax[1], "x", "strain at t = %g" % t_end)
-        ax[1].legend(fontsize=6, ncol=2)
+        plot.label(ax[1], "x", "strain at t = %g" % t_end, legend=(6, 2))
     fig.suptitle("The unlimited scheme at a shock (prm/elasticity_shock.prm, dx = 0.25): over- and "
                  "undershoots; the characteristic minmod limiter removes them", fontsize=9)
     ctx.save(fig, "failure-shock")
@@ -348,15 +336,15 @@ def hopper(ctx):
     return notes
 
 
-MODES = [("interfaces", "layered_1d", interfaces), ("friction", "column", friction),
-         ("rk3", "layered_1d", rk3), ("shock", "layered_1d", shock), ("hopper", "hopper", hopper)]
+MODES = [(interfaces, "layered_1d"), (friction, "column"), (rk3, "layered_1d"), (shock, "layered_1d"),
+         (hopper, "hopper")]
 
 
 def run_all(ctx, scenes):
     notes = []
-    for name, scene, f in MODES:
+    for f, scene in MODES:
         if scene in scenes:
-            print("failure mode %s" % name, flush=True)
+            print("failure mode %s" % f.__name__, flush=True)
             notes += f(ctx) + [""]
     with open(os.path.join(ctx.out, "failures.md"), "w") as fh:
         fh.write("# Where the methods fail: the numbers behind failure-*.png\n\n"

@@ -6,6 +6,7 @@ import json
 import math
 import os
 import re
+from pathlib import Path
 
 import numpy as np
 
@@ -63,35 +64,28 @@ def csv_difference(a, b, diffs):
                 diffs.append("column %s differs" % h)
                 return math.inf
             continue
-        d = np.abs(x - y)[~np.isnan(x)]
-        scale = max(np.abs(x[~np.isnan(x)]).max(initial=0), np.abs(y[~np.isnan(y)]).max(initial=0))
-        worst = max(worst, d.max(initial=0) / (scale if scale > 0 else 1))
+        scale = max(np.nanmax(np.abs(x), initial=0), np.nanmax(np.abs(y), initial=0))
+        worst = max(worst, np.nanmax(np.abs(x - y), initial=0) / (scale if scale > 0 else 1))
     return worst
-
-
-def _read(path, mode="rb"):
-    with open(path, mode) as f:
-        return f.read()
 
 
 def file_difference(a, b, diffs):
     """(largest difference, identical to the letter but for timings) of two files."""
-    name = os.path.basename(a)
-    if name.endswith(".json"):
-        ta, tb = _read(a, "r"), _read(b, "r")
+    if a.endswith(".json"):
+        ta, tb = Path(a).read_text(), Path(b).read_text()
         untimed = [[l for l in t.splitlines() if not TIMING.search(l.split(":")[0])] for t in (ta, tb)]
         return json_difference(json.loads(ta), json.loads(tb), "", diffs), untimed[0] == untimed[1]
-    if name.endswith(".csv"):
+    if a.endswith(".csv"):
         worst = csv_difference(a, b, diffs)
         return worst, worst == 0
-    ta, tb = _read(a), _read(b)
-    if name.endswith(".prm"):  # but for the output directory
+    ta, tb = Path(a).read_bytes(), Path(b).read_bytes()
+    if a.endswith(".prm"):  # but for the output directory
         ta, tb = (re.sub(rb"\n *set directory *=[^\n]*", b"", t) for t in (ta, tb))
     if ta == tb:
         return 0.0, True
-    diffs.append("VTU bytes differ (Float32 output; numbers compared in CSV/JSON)" if name.endswith(".vtu")
+    diffs.append("VTU bytes differ (Float32 output; numbers compared in CSV/JSON)" if a.endswith(".vtu")
                  else "bytes differ")
-    return (math.inf if name.endswith(".pvd") else 0.0), False
+    return (math.inf if a.endswith(".pvd") else 0.0), False
 
 
 def compare_trees(before, after, tol=1e-13):

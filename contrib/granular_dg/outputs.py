@@ -6,6 +6,7 @@ import glob
 import json
 import os
 import re
+from pathlib import Path
 
 import numpy as np
 
@@ -64,8 +65,7 @@ def read_table(path, numbers=True):
     """A CSV file as a Table; numbers=False keeps non-numeric columns as strings
     (the scripts' own tables; the program writes numbers only)."""
     try:
-        with open(path, newline="") as f:
-            lines = f.read().splitlines()
+        lines = Path(path).read_text().splitlines()
     except OSError as e:
         raise OutputError("%s: cannot be read (%s)" % (path, e.strerror)) from None
     comments = [l[1:].strip() for l in lines if l.startswith("#")]
@@ -80,8 +80,7 @@ def read_table(path, numbers=True):
         if len(r) != len(header):
             raise OutputError("%s, line %d: %d fields, the header has %d" % (path, n, len(r), len(header)))
     data = list(zip(*rows[1:])) or [()] * len(header)
-    return Table(path, comments, header,
-                 {h: _column(path, h, c, body, numbers) for h, c in zip(header, data)})
+    return Table(path, comments, header, {h: _column(path, h, c, body, numbers) for h, c in zip(header, data)})
 
 
 def _column(path, name, values, body, numbers):
@@ -101,8 +100,7 @@ def _column(path, name, values, body, numbers):
 def read_json(path, keys=()):
     """A JSON object with the given keys."""
     try:
-        with open(path) as f:
-            data = json.load(f)
+        data = json.loads(Path(path).read_text())
     except OSError as e:
         raise OutputError("%s: cannot be read (%s)" % (path, e.strerror)) from None
     except json.JSONDecodeError as e:
@@ -117,34 +115,23 @@ def _in(directory, name):
     return directory if directory.endswith(name) else os.path.join(directory, name)
 
 
-def summary(directory):
-    """summary.json of a run (its directory or the file)."""
-    return read_json(_in(directory, "summary.json"), SUMMARY_KEYS)
+def _reader(name, keys=()):
+    """The reader of a run's file NAME, given its directory or the file: a
+    Table, or the JSON object with the keys."""
+    read = (lambda path: read_json(path, keys)) if name.endswith(".json") else read_table
+    return lambda directory: read(_in(directory, name))
 
 
-def benchmark(directory):
-    """benchmark.json of a --benchmark run."""
-    return read_json(_in(directory, "benchmark.json"), BENCHMARK_KEYS)
+# a run's summary.json, the benchmark.json of a --benchmark run, its timeseries.csv and convergence.csv, and
+# the column scene's history.csv
+summary, benchmark = _reader("summary.json", SUMMARY_KEYS), _reader("benchmark.json", BENCHMARK_KEYS)
+timeseries, convergence, history = map(_reader, ("timeseries.csv", "convergence.csv", "history.csv"))
 
 
-def timeseries(directory):
-    return read_table(_in(directory, "timeseries.csv"))
-
-
-def convergence(directory):
-    return read_table(_in(directory, "convergence.csv"))
-
-
-def history(directory):
-    """The column scene's history.csv."""
-    return read_table(_in(directory, "history.csv"))
-
-
-def files(directory, prefix, suffix=".csv"):
+def files(directory, prefix):
     """A run's numbered files PREFIX-NNNN.csv, in output order."""
-    pattern = re.compile(re.escape(prefix) + r"-\d+" + re.escape(suffix) + "$")
-    return sorted(p for p in glob.glob(os.path.join(directory, prefix + "-*" + suffix))
-                  if pattern.search(p))
+    pattern = re.compile(re.escape(prefix) + r"-\d+\.csv$")
+    return sorted(p for p in glob.glob(os.path.join(directory, prefix + "-*.csv")) if pattern.search(p))
 
 
 def latest(directory, prefix):
@@ -180,22 +167,21 @@ def slices(directory):
     return {t.time: t for t in map(read_table, files(directory, "slice"))}
 
 
-def edge_profiles(directory, snapshot=-1):
-    """[Table per edge] of one snapshot (index into the snapshots) of a network run."""
+def edge_profiles(directory):
+    """[Table per edge] of the last snapshot of a network run."""
     found = glob.glob(os.path.join(directory, "profile-*-edge-*.csv"))
     key = lambda p: tuple(int(x) for x in re.search(r"profile-(\d+)-edge-(\d+)\.csv$", p).groups())
-    snapshots = sorted({key(p)[0] for p in found})
-    if not snapshots:
+    if not found:
         raise OutputError("%s: no profile-NNNN-edge-K.csv" % directory)
-    chosen = sorted((p for p in found if key(p)[0] == snapshots[snapshot]), key=key)
-    return [read_table(p) for p in chosen]
+    last = max(key(p)[0] for p in found)
+    return [read_table(p) for p in sorted((p for p in found if key(p)[0] == last), key=key)]
 
 
 def sgn_map(directory):
     """(t, z, sgn(v)) of the column's sgn-map.csv: times, cell centres, values."""
     t = read_table(_in(directory, "sgn-map.csv"))
     try:
-        z = np.array([float(h) for h in t.header[1:]])
+        z = np.array(t.header[1:], dtype=float)
     except ValueError:
         raise OutputError("%s: the header after 'time' is not cell centres" % t.path) from None
     return t["time"], z, np.array([t[h] for h in t.header[1:]]).T

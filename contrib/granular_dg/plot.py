@@ -3,6 +3,7 @@ figure is made, so the readers work without it (Debian's python3-matplotlib:
 run the scripts with /usr/bin/python3)."""
 import os
 
+STYLES = ["-", "--", ":", "-."]  # the line styles of runs drawn in black or one colour
 
 def pyplot():
     """matplotlib.pyplot on the Agg backend; SVG files without a date and
@@ -51,14 +52,12 @@ def label(ax, x=None, y=None, title=None, legend=None, size=None, grid=0.3, whic
         ax.legend(fontsize=font, ncol=ncol)
 
 
-def log_ticks(ax, values, axis="x"):
-    """A log axis with ticks at the values run, written as plain numbers."""
+def log_ticks(ax, values):
+    """A log x axis with ticks at the values run, written as plain numbers."""
     from matplotlib.ticker import FixedLocator, FormatStrFormatter, NullLocator
-    a = ax.xaxis if axis == "x" else ax.yaxis
-    (ax.set_xscale if axis == "x" else ax.set_yscale)("log")
-    a.set_major_locator(FixedLocator(sorted(set(values))))
-    a.set_major_formatter(FormatStrFormatter("%.3g"))
-    a.set_minor_locator(NullLocator())
+    ax.set_xscale("log")
+    ax.xaxis.set(major_locator=FixedLocator(sorted(set(values))), major_formatter=FormatStrFormatter("%.3g"),
+                 minor_locator=NullLocator())
 
 
 def split_run(text):

@@ -11,6 +11,7 @@ import sys
 import tempfile
 import threading
 import time
+from pathlib import Path
 
 from . import outputs, plot
 
@@ -25,8 +26,7 @@ Run = collections.namedtuple("Run", "code summary stderr directory wall_s cpu_s"
 
 def load(fields=1):
     """The load average (1, 5, 15 min: the first `fields`) as text."""
-    with open("/proc/loadavg") as f:
-        return " ".join(f.read().split()[:fields])
+    return " ".join(Path("/proc/loadavg").read_text().split()[:fields])
 
 
 def command(build, prm, directory, sets=(), ranks=1, benchmark=False):
@@ -43,8 +43,7 @@ def command(build, prm, directory, sets=(), ranks=1, benchmark=False):
 def _summary(directory):
     """summary.json of a run as a dict, {} when there is none (bad input)."""
     try:
-        with open(os.path.join(directory, "summary.json")) as f:
-            return json.load(f)
+        return json.loads(Path(directory, "summary.json").read_text())
     except (OSError, ValueError):
         return {}
 
@@ -56,8 +55,7 @@ def finished(directory):
     if not s:
         return None
     try:
-        with open(os.path.join(directory, "exit.txt")) as f:
-            code, err = f.read().split("\n", 1)
+        code, err = Path(directory, "exit.txt").read_text().split("\n", 1)
     except OSError:
         if s.get("status") != "completed":
             return None
@@ -82,10 +80,8 @@ def run_case(build, prm, directory, sets=(), ranks=1, benchmark=False, reuse=Fal
         done = Run(code, _summary(directory), err, directory, time.time() - t0, cpu)
         if keep:
             done = done._replace(summary=dict(done.summary, _run_wall_s=done.wall_s, _run_cpu_s=cpu, _load=l0))
-            with open(os.path.join(directory, "summary.json"), "w") as f:
-                json.dump(done.summary, f)
-            with open(os.path.join(directory, "exit.txt"), "w") as f:
-                f.write("%d\n%s" % (code, err))
+            Path(directory, "summary.json").write_text(json.dumps(done.summary))
+            Path(directory, "exit.txt").write_text("%d\n%s" % (code, err))
     if check and done.code != 0:
         sys.exit("granular_dg %s into %s: exit %d: %s" % (prm, directory, done.code, done.stderr))
     return done
@@ -101,15 +97,13 @@ def execute(cmd, log=None):
         out.seek(0), err.seek(0)
         stdout, stderr = out.read(), err.read()
     if log:
-        with open(log, "w") as f:
-            f.write(stdout + stderr)
+        Path(log).write_text(stdout + stderr)
     return p.returncode, stderr.strip().replace("\n", " "), usage.ru_utime + usage.ru_stime
 
 
 def cfl_limits():
     """{scheme: [the CFL limit of degree 0..4]}: the program's table (dg::cfl_limit in source/dg/parameters.cc)."""
-    with open(os.path.join(ROOT, "source/dg/parameters.cc")) as f:
-        rows = re.findall(r"\{([\d.,\s]+)\},?\}?;?\s*// (\w+)", f.read())
+    rows = re.findall(r"\{([\d.,\s]+)\},?\}?;?\s*// (\w+)", Path(ROOT, "source/dg/parameters.cc").read_text())
     return {name: [float(x) for x in values.split(",")] for values, name in rows}
 
 
@@ -121,8 +115,8 @@ def tag(value):
 class Runs:
     """The runs of a study and what it writes: run(d, prm, sets) runs PRM
     into OUT/SUBDIR/d with the common SETS and then its own, reused when it
-    finished there before (delete it to rerun; check: exit with the error of
-    a failed run); pmap runs --jobs at a time; csv and save write OUT/NAME.csv
+    finished there before (delete it to rerun, or reuse=False; check: exit
+    with the error of a failed run); pmap runs --jobs at a time; csv and save write OUT/NAME.csv
     and the chart OUT/NAME.png (and in the other FORMATS)."""
 
     def __init__(self, build, out, quick=False, jobs=1, subdir="", sets=(), check=False, formats=()):
@@ -131,11 +125,11 @@ class Runs:
         self.count, self.lock = {"executed": 0, "reused": 0}, threading.Lock()
         os.makedirs(self.out, exist_ok=True)
 
-    def run(self, d, prm, sets=(), **kwargs):
+    def run(self, d, prm, sets=(), reuse=True, **kwargs):
         directory = os.path.join(self.out, self.subdir, d)
         with self.lock:
-            self.count["reused" if finished(directory) else "executed"] += 1
-        return run_case(self.build, prm, directory, self.sets + tuple(sets), reuse=True, check=self.check, **kwargs)
+            self.count["reused" if reuse and finished(directory) else "executed"] += 1
+        return run_case(self.build, prm, directory, self.sets + tuple(sets), reuse=reuse, check=self.check, **kwargs)
 
     def pmap(self, f, items):
         """f over items, --jobs at a time (threads), the results in order."""
