@@ -50,9 +50,8 @@ CASES = {
     "network_grid": ("prm/network_city_grid.prm", 1, ["Network/edge profiles=none"]),
 }
 # the columns of throughput.csv; the rates are MDoF/s
-FIELDS = ["code", "case", "dim", "degree", "ranks", "engine", "n_dofs", "steps", "cpu_us_per_step",
-          "mdofs_step", "mdofs_rk", "mdofs_wall", "ratio_to_step67", "step_ratio_to_step67",
-          "load_before", "load_after"]
+FIELDS = ["code", "case", "dim", "degree", "ranks", "engine", "n_dofs", "steps", "cpu_us_per_step", "mdofs_step",
+          "mdofs_rk", "mdofs_wall", "ratio_to_step67", "step_ratio_to_step67", "load_before", "load_after"]
 
 
 def cfl_override(prm, degree):

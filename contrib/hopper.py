@@ -188,8 +188,7 @@ def march_range(a):
             'Hopper/lower half-angle=%g' % angle, 'Hopper output/step series interval=0'], reuse=False)
         s = r.summary
         rows.append(dict(theta_w=angle, completed=int(r.code == 0), final_tau=s.get('final_time', 0),
-                         min_margin=s.get('diagnostics', {}).get('min_hyperbolicity_margin', float('nan')),
-                         cpu_s=r.cpu_s))
+                         min_margin=s.get('diagnostics', {}).get('min_hyperbolicity_margin', np.nan), cpu_s=r.cpu_s))
         print('theta_w = %g: exit %d, tau = %s %s' % (angle, r.code, s.get('final_time'), r.stderr[:160]))
     runs.csv('range', rows)
 
