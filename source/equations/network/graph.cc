@@ -288,7 +288,10 @@ namespace granular_dg::network
     , label(graph.is_star() ? "vertex" : graph.vertices[v].label)
   {
     for (const auto &end : end_list)
-      flux.push_back(graph.edges[end.edge].flux);
+      {
+        flux.push_back(graph.edges[end.edge].flux);
+        incoming.push_back(end.incoming);
+      }
   }
 
   std::vector<double>
@@ -307,18 +310,19 @@ namespace granular_dg::network
   double
   Junction::net_outflow(const double *traces, const double u0) const
   {
-    // end_fluxes() summed without a vector (a stage calls this once per vertex)
-    double sum = 0;
-    for (unsigned int i = 0; i < end_list.size(); ++i)
-      sum += end_list[i].incoming ? -flux[i].numerical_flux(type, traces[i], u0) :
-                                    flux[i].numerical_flux(type, u0, traces[i]);
-    return sum;
+    return net_outflow(flux.data(), incoming.data(), traces, u0);
   }
 
   double
-  Junction::rate(const double *traces, const double u0) const
+  Junction::net_outflow(const FluxFunction *law, const unsigned char *in, const double *traces,
+                        const double u0) const
   {
-    return dx0 > 0 ? -net_outflow(traces, u0) / dx0 : 0.;
+    // end_fluxes() summed without a vector (a stage calls this once per vertex)
+    double sum = 0;
+    for (unsigned int i = 0; i < end_list.size(); ++i)
+      sum += in[i] ? -law[i].numerical_flux(type, traces[i], u0) :
+                     law[i].numerical_flux(type, u0, traces[i]);
+    return sum;
   }
 
   double

@@ -270,6 +270,7 @@ namespace granular_dg::network
               owned ? lines->index(local(k), ends[i].incoming ? edge_cells[k] - 1 : 0) : 0;
             vertex_ends.source.push_back(slot >= 0 ? -1 - long(slot) : long(cell));
             vertex_ends.at_end.push_back(ends[i].incoming);
+            vertex_ends.law.push_back(net.edges[k].flux);
             if (owned)
               owned_ends.push_back({v, local(k), edge_h[k], cell});
           }
@@ -520,7 +521,9 @@ namespace granular_dg::network
       {
         const double u0 = vertex_state(v, src, time);
         vertex_u0[v]    = u0;
-        rates[v]        = junctions[v].rate(traces_at(v), u0);
+        const auto   f  = vertex_ends.first[v];
+        rates[v]        = junctions[v].rate(junctions[v].net_outflow(
+          vertex_ends.law.data() + f, vertex_ends.at_end.data() + f, traces_at(v), u0));
       }
     set_end_states(time);
     stage_inflow.push_back(far_end_inflow(src));

@@ -58,9 +58,19 @@ namespace granular_dg::network
     double
     net_outflow(const double *traces, double u0) const;
 
-    /// du_0/dt of (4.1b) (0 for a vertex without volume).
+    /// net_outflow() with the laws and directions (incoming: 1) of the ends
+    /// read from arrays in the order of ends(): a network keeps those of all
+    /// its vertices in one array, which a stage reads in order.
     double
-    rate(const double *traces, double u0) const;
+    net_outflow(const FluxFunction *law, const unsigned char *incoming, const double *traces,
+                double u0) const;
+
+    /// du_0/dt of (4.1b) from the net outflow (0 for a vertex without volume).
+    double
+    rate(const double net_outflow) const
+    {
+      return dx0 > 0 ? -net_outflow / dx0 : 0.;
+    }
 
     /// The u_0 with net_outflow = 0. Throws RunError (naming t) when the
     /// outgoing edges cannot carry the incoming flux for any u_0.
@@ -93,7 +103,8 @@ namespace granular_dg::network
     }
 
     std::vector<EdgeEnd>      end_list;
-    std::vector<FluxFunction> flux; ///< of each end's edge
+    std::vector<FluxFunction>  flux;     ///< of each end's edge
+    std::vector<unsigned char> incoming; ///< of each end
     NumericalFlux             type;
     double                    dx0;
     std::string               label; ///< "vertex" on a star, else "Vertex 3"

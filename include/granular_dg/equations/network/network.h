@@ -349,12 +349,15 @@ namespace granular_dg::network
     /// the ends of each vertex (CSR: those of v are first[v] .. first[v +
     /// 1] - 1, in Junction::ends() order): the array index of the cell
     /// whose trace it takes (source >= 0), or -1 - its slot in exchanged
-    /// (a vertex shared with other ranks); at_end: the trace at x = L
+    /// (a vertex shared with other ranks); at_end: the trace at x = L (an
+    /// incoming end); law: the edge's flux (the vertex balance reads these
+    /// in order instead of each Junction's own arrays)
     struct VertexEnds
     {
       std::vector<std::size_t>   first;
       std::vector<long>          source;
       std::vector<unsigned char> at_end;
+      std::vector<FluxFunction>  law;
     } vertex_ends;
     /// the ends of this rank's vertices on this rank's edges, in the order
     /// of vertex_ends (one flat pass for the time step and the total
