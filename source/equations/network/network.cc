@@ -110,6 +110,13 @@ namespace granular_dg::network
       return result;
     }
 
+    /// x[0] + ... + x[7], added pairwise
+    double
+    pairwise_sum(const double (&x)[8])
+    {
+      return ((x[0] + x[1]) + (x[2] + x[3])) + ((x[4] + x[5]) + (x[6] + x[7]));
+    }
+
     /// The sum of the n cell means of an edge (at mean[c * stride]) and their
     /// total variation, each over 8 interleaved partial sums (cell c in sum
     /// c % 8: no long chain of dependent additions) added pairwise. Written
@@ -131,10 +138,7 @@ namespace granular_dg::network
       for (unsigned int l = 0; l < L; ++l)
         if (c + l < n)
           add(c + l, l);
-      const auto pairwise = [](const double(&x)[L]) {
-        return ((x[0] + x[1]) + (x[2] + x[3])) + ((x[4] + x[5]) + (x[6] + x[7]));
-      };
-      return {{pairwise(sum), pairwise(tv)}};
+      return {{pairwise_sum(sum), pairwise_sum(tv)}};
     }
 
 #if DEAL_II_VECTORIZATION_WIDTH_IN_BITS >= 512 && defined(__AVX512F__)
@@ -144,8 +148,11 @@ namespace granular_dg::network
     std::array<double, 2>
     edge_sums(const double *mean, const unsigned int n)
     {
-      const auto    first = [](const unsigned int k) { return __mmask8(k >= 8 ? 0xff : (1u << k) - 1); };
-      const __m512d sign  = _mm512_set1_pd(-0.);
+      // the first k of the 8 lanes
+      const auto first = [](const unsigned int k) {
+        return __mmask8(k >= 8 ? 0xff : (1u << k) - 1);
+      };
+      const __m512d sign = _mm512_set1_pd(-0.);
       __m512d       sum = _mm512_setzero_pd(), tv = _mm512_setzero_pd();
       for (unsigned int c = 0; c < n; c += 8)
         {
@@ -159,10 +166,7 @@ namespace granular_dg::network
       double s[8], t[8];
       _mm512_storeu_pd(s, sum);
       _mm512_storeu_pd(t, tv);
-      const auto pairwise = [](const double(&x)[8]) {
-        return ((x[0] + x[1]) + (x[2] + x[3])) + ((x[4] + x[5]) + (x[6] + x[7]));
-      };
-      return {{pairwise(s), pairwise(t)}};
+      return {{pairwise_sum(s), pairwise_sum(t)}};
     }
 #endif
   } // namespace
@@ -439,8 +443,9 @@ namespace granular_dg::network
     for (std::size_t i = 0; i < end_traces.size(); ++i)
       {
         const long source = vertex_ends.source[i];
-        end_traces[i]     = source < 0 ? exchanged[-1 - source] :
-                                         lines->trace_at(s.edges.data() + source, vertex_ends.at_end[i]);
+        end_traces[i]     = source < 0 ?
+                              exchanged[-1 - source] :
+                              lines->trace_at(s.edges.data() + source, vertex_ends.at_end[i]);
       }
   }
 

@@ -102,11 +102,11 @@ namespace granular_dg::network
       return traces.data();
     }
 
-    std::vector<EdgeEnd>      end_list;
+    std::vector<EdgeEnd>       end_list;
     std::vector<FluxFunction>  flux;     ///< of each end's edge
     std::vector<unsigned char> incoming; ///< of each end
-    NumericalFlux             type;
-    double                    dx0;
-    std::string               label; ///< "vertex" on a star, else "Vertex 3"
+    NumericalFlux              type;
+    double                     dx0;
+    std::string                label; ///< "vertex" on a star, else "Vertex 3"
   };
 } // namespace granular_dg::network
