@@ -299,11 +299,7 @@ namespace granular_dg::network
   {
     std::vector<double> F(end_list.size());
     for (unsigned int i = 0; i < end_list.size(); ++i)
-      {
-        const FluxFunction &f = flux[i];
-        F[i] = end_list[i].incoming ? f.numerical_flux(type, traces[i], u0) :
-                                      f.numerical_flux(type, u0, traces[i]);
-      }
+      F[i] = end_flux(flux[i], incoming[i], traces[i], u0);
     return F;
   }
 
@@ -320,8 +316,10 @@ namespace granular_dg::network
     // end_fluxes() summed without a vector (a stage calls this once per vertex)
     double sum = 0;
     for (unsigned int i = 0; i < end_list.size(); ++i)
-      sum += in[i] ? -law[i].numerical_flux(type, traces[i], u0) :
-                     law[i].numerical_flux(type, u0, traces[i]);
+      {
+        const double F = end_flux(law[i], in[i], traces[i], u0);
+        sum += in[i] ? -F : F;
+      }
     return sum;
   }
 

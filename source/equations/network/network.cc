@@ -117,36 +117,12 @@ namespace granular_dg::network
       return ((x[0] + x[1]) + (x[2] + x[3])) + ((x[4] + x[5]) + (x[6] + x[7]));
     }
 
-    /// The sum of the n cell means of an edge (at mean[c * stride]) and their
-    /// total variation, each over 8 interleaved partial sums (cell c in sum
-    /// c % 8: no long chain of dependent additions) added pairwise. Written
-    /// in blocks of 8 so that the partial sums stay in registers.
-    std::array<double, 2>
-    edge_sums(const double *mean, const unsigned int stride, const unsigned int n)
-    {
-      constexpr unsigned int L      = 8;
-      double                 sum[L] = {}, tv[L] = {};
-      const auto             add    = [&](const unsigned int c, const unsigned int l) {
-        sum[l] += mean[c * stride];
-        if (c + 1 < n)
-          tv[l] += std::abs(mean[(c + 1) * stride] - mean[c * stride]);
-      };
-      unsigned int c = 0;
-      for (; c + L <= n; c += L)
-        for (unsigned int l = 0; l < L; ++l)
-          add(c + l, l);
-      for (unsigned int l = 0; l < L; ++l)
-        if (c + l < n)
-          add(c + l, l);
-      return {{pairwise_sum(sum), pairwise_sum(tv)}};
-    }
-
 #if DEAL_II_VECTORIZATION_WIDTH_IN_BITS >= 512 && defined(__AVX512F__)
-    /// edge_sums() at stride 1 (degree 0), the partial sums in the lanes of
-    /// one register each: the same additions in the same order, so the same
-    /// result to the bit. Masked loads end the edge.
+    /// edge_sums() below at stride 1 (degree 0), the partial sums in the
+    /// lanes of one register each: the same additions in the same order, so
+    /// the same result to the bit. Masked loads end the edge.
     std::array<double, 2>
-    edge_sums(const double *mean, const unsigned int n)
+    contiguous_edge_sums(const double *mean, const unsigned int n)
     {
       // the first k of the 8 lanes
       const auto first = [](const unsigned int k) {
@@ -169,6 +145,34 @@ namespace granular_dg::network
       return {{pairwise_sum(s), pairwise_sum(t)}};
     }
 #endif
+
+    /// The sum of the n cell means of an edge (at mean[c * stride]) and their
+    /// total variation, each over 8 interleaved partial sums (cell c in sum
+    /// c % 8: no long chain of dependent additions) added pairwise. Written
+    /// in blocks of 8 so that the partial sums stay in registers.
+    std::array<double, 2>
+    edge_sums(const double *mean, const unsigned int stride, const unsigned int n)
+    {
+#if DEAL_II_VECTORIZATION_WIDTH_IN_BITS >= 512 && defined(__AVX512F__)
+      if (stride == 1)
+        return contiguous_edge_sums(mean, n);
+#endif
+      constexpr unsigned int L      = 8;
+      double                 sum[L] = {}, tv[L] = {};
+      const auto             add    = [&](const unsigned int c, const unsigned int l) {
+        sum[l] += mean[c * stride];
+        if (c + 1 < n)
+          tv[l] += std::abs(mean[(c + 1) * stride] - mean[c * stride]);
+      };
+      unsigned int c = 0;
+      for (; c + L <= n; c += L)
+        for (unsigned int l = 0; l < L; ++l)
+          add(c + l, l);
+      for (unsigned int l = 0; l < L; ++l)
+        if (c + l < n)
+          add(c + l, l);
+      return {{pairwise_sum(sum), pairwise_sum(tv)}};
+    }
   } // namespace
 
   std::vector<unsigned int>
@@ -789,14 +793,8 @@ namespace granular_dg::network
         m += junctions[v].width() * u.vertices[v];
     for (const unsigned int k : ranks->edges())
       {
-        const double      *mean = u.edges.data() + lines->index(local(k), 0);
-        const unsigned int n    = lines->n_modes();
-#if DEAL_II_VECTORIZATION_WIDTH_IN_BITS >= 512 && defined(__AVX512F__)
         const auto [sum, variation] =
-          n == 1 ? edge_sums(mean, edge_cells[k]) : edge_sums(mean, n, edge_cells[k]);
-#else
-        const auto [sum, variation] = edge_sums(mean, n, edge_cells[k]);
-#endif
+          edge_sums(u.edges.data() + lines->index(local(k), 0), lines->n_modes(), edge_cells[k]);
         m += edge_h[k] * sum;
         tv += variation;
       }

@@ -95,6 +95,13 @@ namespace granular_dg::network
     }
 
   private:
+    /// The flux of one end in its edge's direction (end_fluxes())
+    double
+    end_flux(const FluxFunction &law, const bool in, const double trace, const double u0) const
+    {
+      return in ? law.numerical_flux(type, trace, u0) : law.numerical_flux(type, u0, trace);
+    }
+
     const double *
     checked(const std::vector<double> &traces) const
     {
