@@ -280,7 +280,7 @@ namespace granular_dg::network
             vertex_ends.at_end.push_back(ends[i].incoming);
             vertex_ends.law.push_back(net.edges[k].flux);
             if (owned)
-              owned_ends.push_back({v, local(k), edge_h[k], cell});
+              owned_ends.push_back({v, cell});
           }
         vertex_ends.first.push_back(vertex_ends.source.size());
       }
@@ -703,10 +703,11 @@ namespace granular_dg::network
   double
   NetworkProblem::time_step(const double time)
   {
-    double speed_over_h = lines->max_speed_over_h(u.edges.data());
-    for (const auto &end : owned_ends)
-      speed_over_h = std::max(
-        speed_over_h, std::abs(lines->flux(end.edge).derivative(u.vertices[end.vertex])) / end.h);
+    // the vertex value at each vertex end of this rank's edges
+    face_values.resize(2 * lines->n_edges());
+    for (const auto &[face, v] : vertex_faces)
+      face_values[face] = u.vertices[v];
+    const double speed_over_h = lines->max_speed_over_h(u.edges.data(), face_values.data());
     return method.time_step(ranks->max(speed_over_h), "t", time);
   }
 

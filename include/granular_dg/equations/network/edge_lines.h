@@ -104,8 +104,9 @@ namespace granular_dg::network
     /// may be src or old).
     void stage(const double *src, double *dst, const double *old, double alpha, double beta,
                double gamma) const;
-    /// max over the cells and Gauss points of |f'(u)| / h
-    double max_speed_over_h(const double *u) const;
+    /// max over the cells and Gauss points of |f'(u)| / h, and over the
+    /// vertex ends (kind() == vertex) of |f'(vertex_values[2 e + side])| / h
+    double max_speed_over_h(const double *u, const double *vertex_values) const;
     /// The TVB limiter in place (the outer states are those at the time of
     /// u); the number of troubled cells.
     unsigned int limit(double *u) const;
@@ -128,8 +129,7 @@ namespace granular_dg::network
     void raw_blending_factors(const double *src, unsigned int e) const;
     double blending_factor(unsigned int e, unsigned int c) const;
     template <unsigned int nm>
-    void max_speed_edge(const double *u, unsigned int e, VectorizedArray<double> &lanes,
-                        double &result) const;
+    double max_speed_edge(const double *u, const double *vertex_values, unsigned int e) const;
     template <unsigned int nm>
     unsigned int limit_edge(double *u, unsigned int e) const;
     template <unsigned int nm>

@@ -360,16 +360,16 @@ namespace granular_dg::network
       std::vector<FluxFunction>  law;
     } vertex_ends;
     /// the ends of this rank's vertices on this rank's edges, in the order
-    /// of vertex_ends (one flat pass for the time step and the total
-    /// variation): the vertex, the local edge, its cell size and the array
-    /// index of mode 0 of the end cell
+    /// of vertex_ends (one flat pass for the total variation): the vertex
+    /// and the array index of mode 0 of the end cell
     struct OwnedEnd
     {
-      unsigned int vertex, edge;
-      double       h;
+      unsigned int vertex;
       std::size_t  cell;
     };
     std::vector<OwnedEnd> owned_ends;
+    /// time_step(): the vertex value at each face of vertex_faces
+    std::vector<double> face_values;
     std::vector<Junction>                            junctions;
     /// the value the edges see at each vertex in the current stage
     mutable std::vector<double>                      vertex_u0;
