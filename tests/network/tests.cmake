@@ -5,6 +5,11 @@
 # c_0 of Examples 7.1, 7.2, 7.4 (deviations printed, compared at 1e-12 abs).
 granular_dg_unit_test(network/network_physics NUMDIFF -a 1e-12 -r 0)
 
+# The initial projection's cell moments (add_cell_moments): smooth data in
+# one level of adaptive Gauss integration in every cell of a fine mesh (the
+# counts exactly), a jump inside a cell located to round-off.
+granular_dg_unit_test(network/cell_moments NUMDIFF -a 0 -r 0)
+
 # L1 contraction at every step and preservation of order between two runs
 # with different data (Theorem 4.14), and their failure with a vertex 4
 # times too narrow (the ratios to 1e-9 relative).

@@ -1,6 +1,8 @@
 #pragma once
 
 #include <deal.II/base/function.h>
+#include <deal.II/base/polynomial.h>
+#include <deal.II/base/quadrature_lib.h>
 
 #include <granular_dg/base/evolution.h>
 #include <granular_dg/base/run_parameters.h>
@@ -67,6 +69,16 @@ namespace granular_dg::network
   /// The cells of every edge of graph at cells per unit length (at least one).
   std::vector<unsigned int>
   edge_cells(const Graph &graph, double cells_per_unit_length);
+
+  /// Adds to result[k] the moment int_a^b g(x) L_k((x - x0) / h) dx of g
+  /// over [a, b] inside the cell [x0, x0 + h], k = 0 .. legendre.size() - 1:
+  /// adaptive Gauss integration (rule quad) that bisects until two levels
+  /// agree to round-off, so a jump inside a cell is located to machine
+  /// precision (exact cell averages, (4.11)); smooth data need one level.
+  void
+  add_cell_moments(const Function<1> &g, const std::vector<Polynomials::Legendre> &legendre,
+                   const QGauss<1> &quad, double x0, double h, double a, double b,
+                   std::vector<double> &result, unsigned int depth = 0);
 
   /// Bytes of one snapshot of the network (the estimate of
   /// require_reasonable_snapshot_count()), without building it.
