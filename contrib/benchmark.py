@@ -84,12 +84,11 @@ def run_ours(build, out, name, degree, quick, ranks=1, reuse=False):
             "load_before": b["load_before"], "load_after": b["load_after"]}
 
 
-def patch_step67(src, dim, degree, refinements, steps):
+def patch_step67(s, dim, degree, refinements, steps):
     """step-67's source with its constants replaced (dimension, degree,
     refinements, a fixed number of time steps, CPU + wall timers, no VTU
     output); in 1D its testcase 0, the 2D vortex, becomes a smooth entropy
     wave with inflow data on both ends, and the Triangulation is serial."""
-    s = src
     subs = [(r"constexpr unsigned int dimension\s*= \d+;", "constexpr unsigned int dimension = %d;" % dim),
             (r"constexpr unsigned int n_global_refinements = \d+;",
              "constexpr unsigned int n_global_refinements = %d;" % refinements),
@@ -199,11 +198,10 @@ if __name__ == "__main__":
             print(row, flush=True)
             write_tables(a.out, rows)
 
-    for name, p in ((name, int(p)) for name in cases for p in a.degrees.split(",")):
-        add(run_ours(a.build, a.out, name, p, a.quick, reuse=a.reuse))
-    for name, p in ((n, p) for n, ps in (("layered_2d", (2, 3)), ("network_grid", (0, 2))) for p in ps):
-        if a.mpi and name in cases:
-            add(run_ours(a.build, a.out, name, p, a.quick, ranks=2, reuse=a.reuse))
+    mpi = [(n, p, 2) for n, ps in (("layered_2d", (2, 3)), ("network_grid", (0, 2))) for p in ps
+           if a.mpi and n in cases]
+    for name, p, ranks in [(name, int(p), 1) for name in cases for p in a.degrees.split(",")] + mpi:
+        add(run_ours(a.build, a.out, name, p, a.quick, ranks, a.reuse))
     # 2D: [0,10] x [-5,5], 4 x 2^refinements cells per direction: 128^2 cells, as
     # many DoFs as the 2D strip (0.3-1.2 M); 1D: [0, 10], 4 x 2^8 = 1024 cells
     # (the 1D cases have 1200-1600); (refinements, time steps, --quick's)

@@ -46,7 +46,7 @@ def figure(a):
                   color="C0", label="stationary (4.1)-(4.2) with final sgn(v)")
     ax[1, 0].set_xlim(0, zmax)
     plot.label(ax[1, 0], "z", "u", legend=8, grid=0)
-    for i, (d, name) in enumerate(map(plot.split_run, [a.run] + a.compare)):
+    for i, (d, name) in enumerate([plot.split_run(a.run)] + a.compare):
         h = outputs.history(d)
         ax[1, 1].semilogy(h["time"], positive(h["max_velocity"]), STYLES[i % 4], color="k", lw=1, label=name)
     plot.label(ax[1, 1], "t", "max_z v(z, t)", legend=8, which="major")
@@ -74,7 +74,7 @@ def sgn_map(ax, fig, run, history, zmax, tmax):
 
 def naive(a):
     fig, ax = plot.subplots(1, 2, figsize=(11, 4))
-    for i, (d, name) in enumerate(map(plot.split_run, a.runs)):
+    for i, (d, name) in enumerate(a.runs):
         h = outputs.history(d)
         ax[0].plot(h["time"], h["probe_strain"], STYLES[i % 4], lw=1.2, label=name)
         ax[1].semilogy(h["time"], positive(h["max_velocity"]), STYLES[i % 4], lw=1.2, label=name)
@@ -157,7 +157,7 @@ if __name__ == "__main__":
     main(__doc__, {
         "figure": (figure, ["run", "out", ("--title", dict(default="")), ("--zmax", dict(type=float, default=0)),
                             ("--tmax", dict(type=float, default=0, help="time range of the sgn(v) map (0: all)")),
-                            ("--compare", dict(nargs="*", default=[]))]),
-        "naive": (naive, ["out", ("runs", dict(nargs="+"))]),
+                            ("--compare", dict(nargs="*", default=[], type=plot.split_run))]),
+        "naive": (naive, ["out", ("runs", dict(nargs="+", type=plot.split_run))]),
         "indicators": (indicators, ["build", "out"]),
         "late-time": (late_time, ["build", "out", ("--final-time", dict(type=float, default=1000))])})

@@ -19,11 +19,11 @@ import numpy as np
 
 from granular_dg import main, outputs, plot
 from granular_dg.compare import stress_l1
-from granular_dg.run import NO_SNAPSHOTS, Runs
+from granular_dg.run import HOPPER_SAMPLED, NO_SNAPSHOTS, Runs
 
 OUT = os.environ.get('OUTPUT_DIR', 'output')
 RANGE_ANGLES = [18.5, 19, 20, 21, 21.5, 22, 23, 24, 25, 26, 27, 28, 29, 30, 31, 31.5, 32, 33]
-SAMPLED = ('Hopper output/step series interval=0', 'Hopper output/sample points=2001') + NO_SNAPSHOTS
+SAMPLED = (*HOPPER_SAMPLED, *NO_SNAPSHOTS)
 plt = plot.pyplot()
 
 

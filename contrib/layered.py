@@ -94,10 +94,8 @@ def stress(directory):
 
 
 def wake(a):
-    ref_dir, ref_name = plot.split_run(a.reference)
-    ref, rows = stress(ref_dir), []
-    runs = [plot.split_run(r) for r in a.runs]
-    for d, name in runs:
+    ref, rows = stress(a.reference[0]), []
+    for d, name in a.runs:
         for t, s in sorted(stress(d).items()):
             if t > 0 and t in ref:
                 l1_wake, l1_slice, max_wake = slice_l1(s, ref[t], WAKE)
@@ -109,8 +107,8 @@ def wake(a):
     t = max(ref) if a.time is None else a.time
     fig, ax = plot.subplots(figsize=(10, 3.8))
     x, s = ref[t]
-    ax.plot(x[x < WAKE], s[x < WAKE], "k-", lw=2.2, alpha=0.35, label="reference: " + ref_name)
-    for d, name in runs:
+    ax.plot(x[x < WAKE], s[x < WAKE], "k-", lw=2.2, alpha=0.35, label="reference: " + a.reference[1])
+    for d, name in a.runs:
         x, s = stress(d)[t]
         ax.plot(x[x < WAKE], s[x < WAKE], lw=0.9, label=name)
     for j in range(0, int(WAKE), 2):
@@ -182,7 +180,7 @@ if __name__ == "__main__":
         "study": (study, ["build", "out", "reference", ("--quick", dict(action="store_true")),
                           ("--only", dict(help="comma-separated configurations to run (default: all)")),
                           ("--rows-from", dict(help="an earlier layered-study.csv: the rows of the others"))]),
-        "wake": (wake, [("--xlim", dict(default="0,%g" % WAKE)), ("--time", dict(type=float)), "out", "reference",
-                        ("runs", dict(nargs="+"))]),
+        "wake": (wake, [("--xlim", dict(default="0,%g" % WAKE)), ("--time", dict(type=float)), "out",
+                        ("reference", dict(type=plot.split_run)), ("runs", dict(nargs="+", type=plot.split_run))]),
         "wake-study": (wake_study, ["build", "runs", "out", ("--reference", dict(action="append", default=[])),
                                     ("--ranks", dict(type=int, default=2))])})

@@ -26,7 +26,7 @@ def numbers(text):
 
 def runs(a):
     fig, ax = plot.subplots(figsize=(10, 4))
-    for i, (d, name) in enumerate(map(plot.split_run, a.runs)):
+    for i, (d, name) in enumerate(a.runs):
         for t in outputs.profiles(d):
             if t.time != 0 and (not a.times or any(abs(t.time - s) < 1e-9 for s in numbers(a.times))):
                 ax.plot(t["x"], t[a.column], STYLES[i % 4], lw=1, label="%s t=%g" % (name, t.time))
@@ -39,7 +39,7 @@ def runs(a):
 def layered(a):
     lo, hi = numbers(a.xlim) or (-np.inf, np.inf)
     fig, ax = plot.subplots(1, 2, figsize=(12, 4))
-    for i, (d, name) in enumerate(map(plot.split_run, a.runs)):
+    for i, (d, name) in enumerate(a.runs):
         t = outputs.profile_at(d, a.time)
         keep = (t["x"] >= lo) & (t["x"] <= hi)
         style = dict(color="k", lw=1) if i == 0 else dict(ls="none", marker="ox+s^"[(i - 1) % 5], ms=3, mfc="none")
@@ -54,10 +54,9 @@ def layered(a):
 
 
 def slices(a):
-    runs = [plot.split_run(r) for r in a.runs]
-    n = len(outputs.slices(runs[0][0]))
+    n = len(outputs.slices(a.runs[0][0]))
     fig, axes = plot.subplots(n, 1, figsize=(10, 2.3 * n), sharex=True, squeeze=False)
-    for k, (d, name) in enumerate(runs):
+    for k, (d, name) in enumerate(a.runs):
         for ax, (t, s) in zip(axes[:, 0], sorted(outputs.slices(d).items())):
             ax.plot(s["x"], s["stress"], "-" if k == 0 else "--", lw=1, label="%s stress" % name)
             ax.plot(s["x"], s["strain"], ":", lw=1, label="%s strain" % name)
@@ -84,7 +83,7 @@ def solitary(a):
     fig, axes = plot.subplots(len(times), 1, figsize=(10, 2.6 * len(times)), sharex=True, squeeze=False)
     print("| run | t | peaks: stress height @ x |\n|---|---|---|")
     for ax, t in zip(axes[:, 0], times):
-        for k, (d, name) in enumerate(map(plot.split_run, a.runs)):
+        for k, (d, name) in enumerate(a.runs):
             x, s = (outputs.profile_at(d, t, rtol=1e-6)[c] for c in ("x", "stress"))
             ax.plot(x, s, "-" if k == 0 else "--", lw=1.0 if k == 0 else 0.9, label=name)
             print("| %s | %g | %s |" % (name, t, ", ".join("%.4f @ %.2f" % q for q in peaks(x, s, 4))))
@@ -115,7 +114,7 @@ def edges(a):
 
 if __name__ == "__main__":
     title, xlim = ("--title", dict(default="")), ("--xlim", dict(default=""))
-    many = ("runs", dict(nargs="+"))
+    many = ("runs", dict(nargs="+", type=plot.split_run))
     main(__doc__, {
         "runs": (runs, ["out", many, ("--column", dict(default="stress")), ("--times", dict(default="")), xlim, title]),
         "layered": (layered, ["out", many, ("--time", dict(type=float, required=True)), xlim, title]),

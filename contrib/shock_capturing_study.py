@@ -15,7 +15,7 @@ import os
 
 from granular_dg import arguments, outputs, plot
 from granular_dg.compare import stress_l1, value_at
-from granular_dg.run import Runs
+from granular_dg.run import HOPPER_SAMPLED, Runs
 
 # name: (limiter on, indicator, subcell blending, line style)
 CONFIGS = {
@@ -25,8 +25,7 @@ CONFIGS = {
     "blending": (False, "everywhere", True, "s--"),
     "both": (True, "modal_energy", True, "v-"),
 }
-HOPPER = ["Time stepping/final time=0.5", "Output/output times=", "Hopper output/step series interval=0",
-          "Hopper output/sample points=2001"]
+HOPPER = ["Time stepping/final time=0.5", "Output/output times="] + HOPPER_SAMPLED
 # the limiter, the meshes (the one of --quick) and the reference: its file and its --set overrides
 CASES = {
     # (b) at t = 240: L1 strain error against P3, 32 cells per layer, no limiter

@@ -22,7 +22,7 @@ from pathlib import Path
 from granular_dg import arguments, outputs, plot
 from granular_dg.compare import stress_l1
 from granular_dg.outputs import select
-from granular_dg.run import NO_SNAPSHOTS, Runs, load, tag
+from granular_dg.run import HOPPER_SAMPLED, NO_SNAPSHOTS, Runs, load, tag
 
 import study_failures
 from study_failures import LINEAR_RK3, NAN, strain_l1
@@ -49,8 +49,6 @@ def cpu_loop(s):
     """The CPU time of the time loop (the network's own loop's)."""
     return s.get("diagnostics", {}).get("cpu_time_loop_s", s.get("time_loop_cpu_s", NAN))
 
-
-HOPPER_QUIET = ["Hopper output/step series interval=0", "Hopper output/sample points=2001"]
 
 SCENES = {
     # m = 1, t = 4 against the closed form (the frozen region included)
@@ -92,7 +90,7 @@ SCENES = {
         degrees=[1, 2, 3], quick_degrees=[1, 2], cfl=lambda p: {1: 1 / 3., 2: 1 / 5., 3: 0.12}[p],
         max_cells={2: 200, 3: 200},
         error=hopper_radial, error_name="relative difference to the radial field at tau = 1", targets=[1e-3, 1e-5],
-        extra=["Time stepping/final time=1", "Limiter/scheme=none"] + HOPPER_QUIET),
+        extra=["Time stepping/final time=1", "Limiter/scheme=none"] + HOPPER_SAMPLED),
 }
 
 
@@ -160,7 +158,7 @@ STABILITY = {
     "hopper": dict(
         scene="hopper", prm="prm/hopper_radial_cone.prm", mesh="Hopper/cells", cells=50,
         case="30 deg cone, radial field marched to tau = 1 on 50 cells (exact)",
-        extra=["Time stepping/final time=1"] + HOPPER_QUIET, error=hopper_radial,
+        extra=["Time stepping/final time=1"] + HOPPER_SAMPLED, error=hopper_radial,
         degrees=[1, 2, 3], quick_degrees=[1],
         choices=[("Roe-LF + characteristic (GM)", flux_limiter("roe_lax_friedrichs", "characteristic")),
                  ("Roe-LF, no limiter", flux_limiter("roe_lax_friedrichs", "none")),
@@ -176,8 +174,7 @@ EXTEND_FACTORS = [5.0, 8.0, 12.0]
 def work_precision(ctx, name, sc):
     degrees = ctx.pick(sc, "degrees")
 
-    def one(item):
-        p, n = item
+    def one(p, n):
         cfl = sc["cfl"](p)
         run = ctx.run(os.path.join(name, "wp-p%d-n%d" % (p, n)), sc["prm"], sc.get("extra", []) + [
             "Discretization/degree=%d" % p, "%s=%d" % (sc["mesh"], n), "Time stepping/CFL number=%.12g" % cfl])
@@ -255,9 +252,8 @@ def stability(ctx, name, sp):
     extra = sp.get("extra", []) + (sp["setup"](ctx) if "setup" in sp else [])
     p0 = [sp["choices"][i] for i in sp.get("p0_choices", range(len(sp["choices"])))]
 
-    def pair(item):
-        (label, sets), p = item
-        index, rows = sp["choices"].index(item[0]), []
+    def pair(label, sets, p):
+        index, rows = sp["choices"].index((label, sets)), []
 
         def one(cfl, e0):
             run = ctx.run(os.path.join(name, "st-c%d-p%d-cfl%s" % (index, p, tag(cfl))), sp["prm"], extra + sets + [
@@ -295,7 +291,7 @@ def stability(ctx, name, sp):
                           limit_times_2p_plus_1="" if none else lo * (2 * p + 1), linear_rk3_limit=LINEAR_RK3[p],
                           limit_over_linear="" if none else lo / LINEAR_RK3[p], state_above=above)
 
-    results = ctx.pmap(pair, [(c, p) for c in choices for p in degrees if p > 0 or c in p0])
+    results = ctx.pmap(pair, [(*c, p) for c in choices for p in degrees if p > 0 or c in p0])
     rows, limits = [r for rr, _ in results for r in rr], [l for _, l in results]
     ctx.csv(name + "-stability", rows)
     stability_chart(ctx, name, sp, choices, degrees, rows, limits)

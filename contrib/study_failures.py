@@ -1,4 +1,3 @@
-#!/usr/bin/python3
 """Where the methods fail, reproduced and charted for contrib/study.py, which
 runs it (doc/study/README.md, "Where the methods fail"). Each mode writes
 OUT/failure-NAME.{png,svg,csv} and its numbers into OUT/failures.md:
@@ -9,6 +8,7 @@ rk3 (SSP-RK3 beyond its CFL limit, from OUT/layered_1d-stability.csv), shock
 steep-to-shallow transitions)."""
 import math
 import os
+from pathlib import Path
 
 import numpy as np
 
@@ -67,8 +67,7 @@ def interfaces(ctx):
     ref = layered_reference_sets(ctx)
     degrees, per_layer = ([2], [2, 4]) if ctx.quick else ([1, 2], [2, 4, 8, 16])
 
-    def one(item):
-        (label, flux, limiter, _), p, n = item
+    def one(label, flux, limiter, _, p, n):
         run = ctx.run("interfaces/%s-%s-p%d-n%d" % (flux, limiter, p, n), "prm/layered_1d.prm", LAYERED_SHORT + ref + [
             "Mesh/cells x=%d" % (LAYERS * n), "Discretization/degree=%d" % p, "Discretization/numerical flux=" + flux,
             "Limiter/scheme=" + limiter, "Time stepping/CFL number=%.12g" % (0.8 / (2 * p + 1))])
@@ -80,7 +79,7 @@ def interfaces(ctx):
                     time_loop_cpu_s=s.get("time_loop_cpu_s", NAN), final_time=s.get("final_time", ""),
                     message=run.stderr[:160])
 
-    rows = ctx.pmap(one, [(c, p, n) for c in INTERFACE_CONFIGS for p in degrees for n in per_layer])
+    rows = ctx.pmap(one, [(*c, p, n) for c in INTERFACE_CONFIGS for p in degrees for n in per_layer])
     ctx.csv("failure-interfaces", rows)
     fig, ax = plot.subplots(1, 2, figsize=(11, 4.2))
     notes = ["**interfaces** (layered strip [0, %d] to t = %g, L1 strain error against P3 "
@@ -127,8 +126,7 @@ def friction(ctx):
     items = sorted({(v, n, 0.2) for v in range(len(variants)) for n in cells} |
                    {(v, 400, c) for v in range(len(variants)) for c in cfls})
 
-    def one(item):
-        v, n, cfl = item
+    def one(v, n, cfl):
         label, sets = variants[v]
         run = ctx.run("friction/v%d-n%d-cfl%s" % (v, n, tag(cfl)), "tests/column/m1_stuck.prm", sets + [
             "Mesh/cells=%d" % n, "Time stepping/CFL number=%.12g" % cfl])
@@ -227,8 +225,7 @@ def shock(ctx):
     degrees = [1] if ctx.quick else [1, 2, 3, 4]
     limiters = [("characteristic minmod (M = 0)", "characteristic"), ("no limiter", "none")]
 
-    def one(item):
-        p, (label, lim) = item
+    def one(p, label, lim):
         cfl = 0.07 if p == 4 else 0.75 / (2 * p + 1)
         run = ctx.run("shock/%s-p%d" % (lim, p), "prm/elasticity_shock.prm", EVERYWHERE + [
             "Discretization/degree=%d" % p, "Limiter/scheme=" + lim, "Time stepping/CFL number=%.12g" % cfl])
@@ -242,7 +239,7 @@ def shock(ctx):
                      undershoot_pct=100 * max(0., -strain.min()) / eps_w, profile=prof)
         return r
 
-    rows = ctx.pmap(one, [(p, l) for l in limiters for p in degrees])
+    rows = ctx.pmap(one, [(p, *l) for l in limiters for p in degrees])
     ctx.csv("failure-shock", [{k: v for k, v in r.items() if k != "profile"} for r in rows])
     done = [r for r in rows if r["exit"] == 0]
     fig, ax = plot.subplots(1, 2, figsize=(11, 4.2))
@@ -290,8 +287,7 @@ def hopper(ctx):
     # N = 1600 (16x the work of N = 400) only where it changes the outcome
     finest = [] if ctx.quick else [("cone", 31, 1600)]
 
-    def one(item):
-        g, a, n = item
+    def one(g, a, n):
         run = ctx.run("hopper/%s-30-%g-n%d" % (g, a, n), "prm/hopper_cone_30_25.prm", [
             "Hopper/geometry=" + g, "Hopper/lower half-angle=%g" % a, "Hopper/cells=%d" % n,
             "Time stepping/final time=%g" % HOPPER_TAU, "Hopper output/step series interval=0"])
@@ -346,8 +342,6 @@ def run_all(ctx, scenes):
         if scene in scenes:
             print("failure mode %s" % f.__name__, flush=True)
             notes += f(ctx) + [""]
-    with open(os.path.join(ctx.out, "failures.md"), "w") as fh:
-        fh.write("# Where the methods fail: the numbers behind failure-*.png\n\n"
-                 "Written by contrib/study.py (contrib/study_failures.py)%s.\n\n" % (
-                     " --quick" if ctx.quick else ""))
-        fh.write("\n".join(notes) + "\n")
+    Path(ctx.out, "failures.md").write_text("# Where the methods fail: the numbers behind failure-*.png\n\n"
+                                            "Written by contrib/study.py (contrib/study_failures.py)%s.\n\n%s\n" % (
+                                                " --quick" if ctx.quick else "", "\n".join(notes)))

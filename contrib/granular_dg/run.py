@@ -18,6 +18,8 @@ from . import outputs, plot
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 # no snapshots: no output times (but the final one), no VTU
 NO_SNAPSHOTS = ("Output/output times=", "Output/write vtu=false")
+# a hopper run's stress-NNNN.csv at 2001 theta, no step series
+HOPPER_SAMPLED = ["Hopper output/step series interval=0", "Hopper output/sample points=2001"]
 ENV = dict(OMPI_ALLOW_RUN_AS_ROOT="1", OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1",
            OMPI_MCA_rmaps_base_oversubscribe="1", OMPI_MCA_ess_singleton_isolated="1")
 
@@ -132,9 +134,9 @@ class Runs:
         return run_case(self.build, prm, directory, self.sets + tuple(sets), reuse=reuse, check=self.check, **kwargs)
 
     def pmap(self, f, items):
-        """f over items, --jobs at a time (threads), the results in order."""
+        """f(*item) for the items (tuples), --jobs at a time (threads), the results in order."""
         with concurrent.futures.ThreadPoolExecutor(self.jobs) as pool:
-            return list(pool.map(f, items))
+            return list(pool.map(lambda item: f(*item), items))
 
     def pick(self, table, key):
         """table[key], or table["quick_" + key] in a quick study."""
