@@ -26,8 +26,8 @@ from granular_dg.run import ENV, NO_SNAPSHOTS, ROOT, cfl_limits, load, run_case
 from make_network_grid import write_grid
 
 STEP67 = "/usr/share/doc/libdeal.ii-doc/examples/step-67/step-67.cc"
-# the shipped CFL numbers at every degree (above the SSP-RK3 limit at p >= 3
-# for some cases: a cost per step, not an accuracy statement)
+# the shipped CFL numbers, capped at the SSP-RK3 limit of the degree by
+# cfl_override() (the time step does not change the cost of a step)
 QUIET = NO_SNAPSHOTS + ("Time stepping/check stability limit=false",)
 
 # name: (prm, dim, extra --set overrides). Meshes as shipped, except the
