@@ -350,21 +350,26 @@ namespace granular_dg::network
   EdgeLines::max_speed_over_h(const double *u, const double *vertex_values) const
   {
     return dg::with_n_modes(modes, [&](auto nm) {
+      // (the largest over the lanes once at the end: max is exact in any order)
+      VA     lanes  = 0.;
       double result = 0;
       for (unsigned int e = 0; e < n_edges(); ++e)
-        result = std::max(result, max_speed_edge<decltype(nm)::value>(u, vertex_values, e) / h[e]);
+        max_speed_edge<decltype(nm)::value>(u, vertex_values, e, lanes, result);
+      for (unsigned int l = 0; l < W; ++l)
+        result = std::max(result, lanes[l]);
       return result;
     });
   }
 
   /// dg::LineOperator::max_speed_impl() on edge e: the largest speed of its
-  /// cells (SIMD batches, then the rest) and of the vertex values at its
-  /// vertex ends. The caller divides it by h once per edge: division by
-  /// h > 0 is monotone, so this is the same maximum as dividing every speed.
+  /// cells (SIMD batches into lanes, the rest into result) and of the vertex
+  /// values at its vertex ends (into result), divided by h once for the
+  /// batches and once for the rest (division by h > 0 is monotone: the same
+  /// maximum as dividing every speed)
   template <unsigned int nm>
-  double
+  void
   EdgeLines::max_speed_edge(const double *src, const double *vertex_values,
-                            const unsigned int e) const
+                            const unsigned int e, VA &lanes, double &result) const
   {
     const FluxFunction f          = laws[e];
     const auto         cell_speed = [&](const auto *u) {
@@ -377,26 +382,25 @@ namespace granular_dg::network
                                                Number(0.)));
       return cell_max;
     };
-    double       edge_max = 0.;
-    unsigned int c        = 0;
+    unsigned int c = 0;
     if (W > 1 && cells[e] >= W)
       {
-        VA lanes = 0.;
+        VA edge_lanes = 0.;
         for (; c + W <= cells[e]; c += W)
           {
             VA u[nm];
             load_cell_major<nm>(src + index(e, c), u);
-            lanes = std::max(lanes, cell_speed(u));
+            edge_lanes = std::max(edge_lanes, cell_speed(u));
           }
-        for (unsigned int l = 0; l < W; ++l)
-          edge_max = std::max(edge_max, lanes[l]);
+        lanes = std::max(lanes, edge_lanes / VA(h[e]));
       }
+    double rest = 0.;
     for (; c < cells[e]; ++c)
-      edge_max = std::max(edge_max, cell_speed(src + index(e, c)));
+      rest = std::max(rest, cell_speed(src + index(e, c)));
     for (const unsigned int side : {0u, 1u})
       if (end_kind[2 * e + side] == EndKind::vertex)
-        edge_max = std::max(edge_max, std::abs(f.derivative(vertex_values[2 * e + side])));
-    return edge_max;
+        rest = std::max(rest, std::abs(f.derivative(vertex_values[2 * e + side])));
+    result = std::max(result, rest / h[e]);
   }
 
   // ---------------------------------------------------------------- the limiter

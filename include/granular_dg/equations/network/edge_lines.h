@@ -129,7 +129,8 @@ namespace granular_dg::network
     void raw_blending_factors(const double *src, unsigned int e) const;
     double blending_factor(unsigned int e, unsigned int c) const;
     template <unsigned int nm>
-    double max_speed_edge(const double *u, const double *vertex_values, unsigned int e) const;
+    void max_speed_edge(const double *u, const double *vertex_values, unsigned int e,
+                        VectorizedArray<double> &lanes, double &result) const;
     template <unsigned int nm>
     unsigned int limit_edge(double *u, unsigned int e) const;
     template <unsigned int nm>
