@@ -5,8 +5,10 @@
 //    the data) in every cell, also far from x = 0 on a fine mesh. The
 //    Legendre argument must not be computed as (x - x0) / h: that carries
 //    the rounding of x magnified by x / h, the two levels then never agree
-//    to round-off, and the bisection runs to a depth of ~38 (10^5 evaluations
-//    per cell, a set-up of hours at 20000 cells per unit length).
+//    to round-off, and the bisection runs to a depth of ~38 (2.5 10^6
+//    evaluations per cell at 20000 cells per unit length; Example 7.3 at
+//    p = 2 and 33053 cells per unit length did not finish its set-up in
+//    10 minutes).
 //  - A jump inside a cell is located to round-off: the exact cell average.
 // Degree 2 (modes 0-2), the rule of NetworkProblem::initialize() (p + 3
 // points); the counts and verdicts are compared exactly.
