@@ -17,7 +17,7 @@
 #include <deal.II/base/polynomial.h>
 #include <deal.II/base/quadrature_lib.h>
 
-#include <granular_dg/equations/network/network.h>
+#include <granular_dg/network/network.h>
 
 #include <cmath>
 #include <functional>

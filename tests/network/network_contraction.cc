@@ -14,7 +14,8 @@
 
 #include <deal.II/base/function_parser.h>
 
-#include <granular_dg/equations/network/network.h>
+#include <granular_dg/equations/network/system.h>
+#include <granular_dg/network/network.h>
 
 #include <cmath>
 #include <iomanip>
@@ -44,11 +45,11 @@ namespace
       {
         Edge e;
         e.meet(d);
-        e.flux      = {FluxLaw::burgers, 1., 1.};
         e.far_end   = FarEnd::dirichlet;
         e.label     = "Edge";
         g.edges.push_back(e);
       }
+    const std::vector<EdgeLaw>     laws(5, EdgeLaw{{FluxLaw::burgers, 1., 1.}, NumericalFlux::upwind});
     const std::vector<std::string> far = {"2", "1", "0.8", "0.8", "0.8"};
     const std::vector<std::string> du  = {"if(x < 0.8, 2, 1)", "1", "0.8", "0.8", "0.8"};
     const std::vector<std::string> dv  = {"if(x < 0.9, 2, 1.2)", "1 + 0.3*x", "0.9", "1.1",
@@ -68,7 +69,7 @@ namespace
     Graph gu = g, gv = g;
     gu.vertices[0].initial_value = 0.8;
     gv.vertices[0].initial_value = 1.0;
-    NetworkProblem u(gu, method, options, data_u), v(gv, method, options, data_v);
+    NetworkProblem<EdgeLaw> u(gu, laws, method, options, data_u), v(gv, laws, method, options, data_v);
     u.initialize();
     v.initialize();
 

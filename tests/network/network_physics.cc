@@ -6,7 +6,8 @@
 //  - Godunov against brute-force min/max of f over [u_l, u_r], Engquist-
 //    Osher against f(c) + int_c^u max(f', 0) + int_c^v min(f', 0) by
 //    quadrature, and EO = upwind f(u_l) on increasing branches;
-//  - the face flux F*.n of System::numerical_flux for n = +1 and -1;
+//  - EdgeLaw (the law as the network engine evaluates it) in the lanes of a
+//    SIMD batch equal to its scalar values, bit for bit;
 //  - the discrete stationary vertex values of Examples 7.1, 7.2, 7.4
 //    (c_0 = 1, (3 - sqrt 7)/2, sqrt(2/3)) from Junction::balance, and the
 //    error when the outgoing edges cannot carry the incoming flux.
@@ -14,7 +15,7 @@
 
 #include <granular_dg/base/errors.h>
 #include <granular_dg/equations/network/system.h>
-#include <granular_dg/equations/network/junction.h>
+#include <granular_dg/network/junction.h>
 
 #include <cmath>
 #include <iomanip>
@@ -115,66 +116,71 @@ main()
     std::cout << "upwind = f(u_l) on increasing branches: " << d << std::endl;
   }
 
-  // the face flux of the engine: F*.n = F(U_m, U_p) for n = +1,
-  // -F(U_p, U_m) for n = -1
+  // the law as the engine evaluates it (EdgeLaw): in the lanes of a SIMD
+  // batch as in scalar code, bit for bit (a cell gives the same value in a
+  // batch and in the scalar remainder of an edge)
   {
-    const System        s({FluxLaw::burgers, 1., 1.});
-    Tensor<1, 1, double> Um, Up, n;
-    Um[0] = 0.7;
-    Up[0] = -0.3;
+    using VA = VectorizedArray<double>;
     double d = 0;
-    for (const auto type : {NumericalFlux::upwind, NumericalFlux::godunov,
-                            NumericalFlux::local_lax_friedrichs})
-      {
-        const FluxFunction &f = s.flux_function();
-        n[0] = 1.;
-        d    = std::max(d, std::abs(System(s.flux_function(), type).numerical_flux(Um, Up, n, {}, {})[0] -
-                                 f.numerical_flux(type, 0.7, -0.3)));
-        n[0] = -1.;
-        d    = std::max(d, std::abs(System(s.flux_function(), type).numerical_flux(Um, Up, n, {}, {})[0] +
-                                 f.numerical_flux(type, -0.3, 0.7)));
-      }
-    std::cout << "face flux F*.n for n = +-1: " << d << std::endl;
+    for (const FluxFunction f : {FluxFunction{FluxLaw::linear, -0.5, 1.},
+                                 FluxFunction{FluxLaw::burgers, 1., 1.},
+                                 FluxFunction{FluxLaw::traffic, 1., 4.}})
+      for (const auto type : {NumericalFlux::upwind, NumericalFlux::godunov,
+                              NumericalFlux::local_lax_friedrichs})
+        {
+          const EdgeLaw law{f, type};
+          VA            ul, ur;
+          for (unsigned int l = 0; l < VA::size(); ++l)
+            {
+              ul[l] = -1. + 0.7 * l;
+              ur[l] = 2. - 0.45 * l;
+            }
+          const VA F = law.flux(ul, ur), s = law.derivative(ul), v = law.value(ur);
+          for (unsigned int l = 0; l < VA::size(); ++l)
+            d = std::max({d, std::abs(F[l] - law.flux(ul[l], ur[l])),
+                          std::abs(s[l] - law.derivative(ul[l])),
+                          std::abs(v[l] - law.value(ur[l]))});
+        }
+    std::cout << "EdgeLaw in SIMD lanes - scalar: " << d << std::endl;
   }
 
   // discrete stationary vertex values (Definition 4.4)
+  // a star with these edges and its junction (vertex without volume)
   auto star = [](const std::vector<std::pair<Direction, FluxFunction>> &edges) {
-    Graph g;
+    Graph                g;
+    std::vector<EdgeLaw> laws;
     g.vertices.resize(1);
     for (const auto &[dir, f] : edges)
       {
         Edge e;
         e.meet(dir);
-        e.flux      = f;
         g.edges.push_back(e);
+        laws.push_back({f, NumericalFlux::upwind});
       }
-    return g;
+    return Junction<EdgeLaw>(g, laws, 0, 0.);
   };
   const FluxFunction burgers{FluxLaw::burgers, 1., 1.};
   auto               traffic = [](double a) { return FluxFunction{FluxLaw::traffic, 1., a}; };
   {
     // 7.1: in sqrt 2, loop (in-end 1, out-end 1), two out 1; the traces are
     // per end: in-edge, loop in-end, loop out-end, out, out
-    const Graph g = star({{Direction::in, burgers}, {Direction::loop, burgers},
+    const auto j = star({{Direction::in, burgers}, {Direction::loop, burgers},
                           {Direction::out, burgers}, {Direction::out, burgers}});
-    const Junction j(g, 0, NumericalFlux::upwind, 0.);
     std::cout << "7.1 c_0 - 1: "
               << j.balance({std::sqrt(2.), 1., 1., 1., 1.}, 0.) - 1. << std::endl;
   }
   {
-    const Graph    g = star({{Direction::in, traffic(1)}, {Direction::in, traffic(1)},
+    const auto j = star({{Direction::in, traffic(1)}, {Direction::in, traffic(1)},
                              {Direction::out, traffic(2)}, {Direction::out, traffic(4)},
                              {Direction::out, traffic(4)}});
-    const Junction j(g, 0, NumericalFlux::upwind, 0.);
     const double   c0 = j.balance({0.5, 0.5, 0., 0.2, 1.}, 0.);
     std::cout << "7.2 c_0 - (3 - sqrt 7)/2: " << c0 - (3 - std::sqrt(7.)) / 2
               << ", residual " << j.net_outflow({0.5, 0.5, 0., 0.2, 1.}, c0) << std::endl;
   }
   {
-    const Graph    g = star({{Direction::in, burgers}, {Direction::in, burgers},
+    const auto j = star({{Direction::in, burgers}, {Direction::in, burgers},
                              {Direction::out, burgers}, {Direction::out, burgers},
                              {Direction::out, burgers}});
-    const Junction j(g, 0, NumericalFlux::upwind, 0.);
     std::cout << "7.4 c_0 - sqrt(2/3): "
               << j.balance({1., 1., 0., 0.8, 2.}, 0.) - std::sqrt(2. / 3.) << std::endl;
   }
@@ -182,9 +188,8 @@ main()
     // two full roads (flux 1 each) into one road of capacity 1: the
     // Engquist-Osher vertex congests, u_0 = (1 + sqrt(1/2))/2 > 1/2 halves
     // the inflow of each road (f(u_0) = 1/2) and the outflow is the capacity
-    const Graph g = star({{Direction::in, traffic(1)}, {Direction::in, traffic(1)},
+    const auto j = star({{Direction::in, traffic(1)}, {Direction::in, traffic(1)},
                           {Direction::out, traffic(1)}});
-    const Junction j(g, 0, NumericalFlux::upwind, 0.);
     const double   u0 = j.balance({0.5, 0.5, 0.2}, 0.);
     const auto     F  = j.end_fluxes({0.5, 0.5, 0.2}, u0);
     std::cout << "congested vertex: u_0 - (1 + sqrt(1/2))/2 = "
@@ -193,8 +198,7 @@ main()
   }
   {
     // an ingoing edge and no outgoing one: nothing balances a positive flux
-    const Graph    g = star({{Direction::in, FluxFunction{FluxLaw::linear, 1., 1.}}});
-    const Junction j(g, 0, NumericalFlux::upwind, 0.);
+    const auto j = star({{Direction::in, FluxFunction{FluxLaw::linear, 1., 1.}}});
     try
       {
         j.balance({1.}, 0.25);

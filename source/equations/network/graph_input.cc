@@ -385,7 +385,8 @@ namespace granular_dg::network
   }
 
   void
-  GraphInput::add_edge(Edge e, const std::string &at, const std::string &initial,
+  GraphInput::add_edge(Edge e, const FluxFunction &f, const std::string &at,
+                       const std::string &initial,
                        const std::string &far_end_data, const std::string &initial_name,
                        const std::string &far_end_name)
   {
@@ -394,6 +395,7 @@ namespace granular_dg::network
     if (e.far_end == FarEnd::dirichlet && (e.from == free_end || e.to == free_end))
       d.far_end = make_data(far_end_data, at + far_end_name, true);
     graph.edges.push_back(std::move(e));
+    flux.push_back(f);
     data.push_back(d);
     initial_text.push_back(initial);
     where.push_back(at);
@@ -459,12 +461,13 @@ namespace granular_dg::network
                 "a vertex other than from: write loop for a roundabout");
         e.length = csv_number(table.get(row, "length"), at, "length");
         const std::string law = table.get(row, "flux"), p = table.get(row, "parameter");
-        e.flux = make_flux(law, p.empty() ? 1. : csv_number(p, at, "parameter"), at, "parameter");
+        const FluxFunction f =
+          make_flux(law, p.empty() ? 1. : csv_number(p, at, "parameter"), at, "parameter");
         const std::string far = table.get(row, "far_end");
         e.far_end = far.empty() ? FarEnd::outflow : far_end_names.parse(at + "far_end", far);
         const std::string initial = table.get(row, "initial");
         const std::string g       = table.get(row, "far_end_data");
-        add_edge(e, at, initial.empty() ? "0" : initial, g.empty() ? "0" : g, "initial",
+        add_edge(e, f, at, initial.empty() ? "0" : initial, g.empty() ? "0" : g, "initial",
                  "far_end_data");
       }
   }
@@ -560,10 +563,10 @@ namespace granular_dg::network
             }
         e.length = given.length;
         const bool linear = given.flux == "linear";
-        e.flux    = make_flux(given.flux, linear ? given.advection_speed : given.alpha, at,
-                           linear ? "advection speed" : "alpha");
+        const FluxFunction f = make_flux(given.flux, linear ? given.advection_speed : given.alpha,
+                                         at, linear ? "advection speed" : "alpha");
         e.far_end = far_end_names.parse(at + "far end", given.far_end);
-        add_edge(e, at, given.initial_data, given.far_end_data, "initial data", "far end data");
+        add_edge(e, f, at, given.initial_data, given.far_end_data, "initial data", "far end data");
       }
     require(!graph.edges.empty(), "Network/Edge 1/direction", "none",
             "in, out or loop (or from/to) for at least one Network/Edge N");

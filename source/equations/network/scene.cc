@@ -18,7 +18,7 @@
 #include <granular_dg/dg/scene_entry.h>
 #include <granular_dg/equations/network/examples.h>
 #include <granular_dg/equations/network/graph_input.h>
-#include <granular_dg/equations/network/network.h>
+#include <granular_dg/network/network.h>
 #include <granular_dg/equations/network/system.h>
 
 #include <algorithm>
@@ -56,9 +56,20 @@ namespace granular_dg::network
 
       GraphInput                     input;
       dg::DiscretizationParameters   method;
+      NumericalFlux                  flux = NumericalFlux::upwind;
       NetworkOptions                 options;
       std::string                    exact_name = "none";
       std::shared_ptr<ExactSolution> exact;
+
+      /// the physics of every edge: its flux law with the numerical flux
+      std::vector<EdgeLaw>
+      laws() const
+      {
+        std::vector<EdgeLaw> l;
+        for (const FluxFunction &f : input.flux)
+          l.push_back({f, flux});
+        return l;
+      }
 
     private:
       /// Refuse a method the network cannot run, then take it (and the
@@ -114,20 +125,21 @@ namespace granular_dg::network
                 number(ex.exact->valid_until()));
       for (unsigned int k = 0; k < ex.edges.size(); ++k)
         {
-          const Edge        &e    = graph.edges[k];
-          const auto        &want = ex.edges[k];
+          const Edge         &e    = graph.edges[k];
+          const FluxFunction &f    = c.input.flux[k];
+          const auto         &want = ex.edges[k];
           const std::string &sec  = c.input.where[k];
           const std::string  why  = ", as " + ex.name + " expects (or set Network/exact solution = none)";
           require(e.from == want.from && e.to == want.to, sec + "direction",
                   graph.describe(k), graph.describe_ends(want.from, want.to) + why);
-          require(e.flux.law == want.flux.law, sec + "flux", flux_law_names.name(e.flux.law),
+          require(f.law == want.flux.law, sec + "flux", flux_law_names.name(f.law),
                   flux_law_names.name(want.flux.law) + why);
           if (want.flux.law == FluxLaw::linear)
-            require(std::abs(e.flux.speed - want.flux.speed) < 1e-12, sec + "advection speed",
-                    e.flux.speed, number(want.flux.speed) + why);
+            require(std::abs(f.speed - want.flux.speed) < 1e-12, sec + "advection speed", f.speed,
+                    number(want.flux.speed) + why);
           if (want.flux.law == FluxLaw::traffic)
-            require(std::abs(e.flux.alpha - want.flux.alpha) < 1e-12, sec + "alpha",
-                    e.flux.alpha, number(want.flux.alpha) + why);
+            require(std::abs(f.alpha - want.flux.alpha) < 1e-12, sec + "alpha", f.alpha,
+                    number(want.flux.alpha) + why);
           // the initial data away from the jumps, and Dirichlet inflow data
           const auto breaks = ex.exact->breakpoints(k, 0.);
           for (unsigned int i = 0; i <= 200; ++i)
@@ -351,7 +363,7 @@ namespace granular_dg::network
       require(m.engine != dg::Engine::matrix_free, "Discretization/engine", "matrix_free",
               "auto or line here: the network's edges run in one line engine (EdgeLines)");
       method            = m;
-      options.flux      = numerical_flux_names.parse("Discretization/numerical flux", m.flux);
+      flux              = numerical_flux_names.parse("Discretization/numerical flux", m.flux);
       options.write_vtu = common.write_vtu;
       common.require_format_fits(1); // the edges are 1D
     }
@@ -365,7 +377,7 @@ namespace granular_dg::network
           for (const auto &d : input.data)
             f.push_back(d.initial);
           // the vertex values of a stationary state: given, or c_0 of the data
-          NetworkProblem stationary(input.graph, method, options, input.data);
+          NetworkProblem<EdgeLaw> stationary(input.graph, laws(), method, options, input.data);
           stationary.initialize();
           exact = std::make_shared<InitialData>(f, stationary.vertex_values());
         }
@@ -399,11 +411,11 @@ namespace granular_dg::network
       }
       begin_output(common);
       if (common.convergence)
-        run_network_convergence(c.input.graph, c.input.data, c.method, c.options, *c.exact,
-                                common);
+        run_network_convergence(c.input.graph, c.laws(), c.input.data, c.method, c.options,
+                                *c.exact, common);
       else
-        run_network(c.input.graph, c.input.data, c.method, c.options, c.exact.get(), common,
-                    true);
+        run_network(c.input.graph, c.laws(), c.input.data, c.method, c.options, c.exact.get(),
+                    common, true);
     }
 
     const RegisterScene registration(dg::scene_entry<Case>(

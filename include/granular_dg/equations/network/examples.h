@@ -19,8 +19,9 @@
  *  - 7.4: c_0 = sqrt(2/3) (3 c_0^2 = 2; the text's sqrt(3/2) is a typo).
  */
 
-#include <granular_dg/equations/network/exact_solution.h>
-#include <granular_dg/equations/network/graph.h>
+#include <granular_dg/equations/network/system.h>
+#include <granular_dg/network/exact_solution.h>
+#include <granular_dg/network/graph.h>
 
 #include <memory>
 #include <string>

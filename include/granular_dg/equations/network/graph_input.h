@@ -2,8 +2,9 @@
 
 #include <deal.II/base/parameter_handler.h>
 
-#include <granular_dg/equations/network/graph.h>
-#include <granular_dg/equations/network/network.h>
+#include <granular_dg/equations/network/system.h>
+#include <granular_dg/network/graph.h>
+#include <granular_dg/network/network.h>
 
 #include <string>
 #include <vector>
@@ -61,8 +62,10 @@ namespace granular_dg::network
     std::vector<VertexSection> vertex_sections = std::vector<VertexSection>(max_vertex_sections);
 
     /// What they describe, built and validated once they are read:
-    Graph                    graph;
-    std::vector<EdgeData>    data;
+    Graph                     graph;
+    /// per edge: its flux law and its data
+    std::vector<FluxFunction> flux;
+    std::vector<EdgeData>     data;
     /// per edge: its initial data as written, and where it was given
     /// ("Network/Edge 3/" or "Network/graph file 'grid.csv', line 4: ")
     std::vector<std::string> initial_text;
@@ -82,10 +85,10 @@ namespace granular_dg::network
     /// Vertex N section sets something
     void
     vertices_from_sections(unsigned int n_vertices);
-    /// e with its data (numbers become constants, else expressions; the
+    /// e with its flux law f and its data (numbers become constants, else expressions; the
     /// names are the data's parameters in messages)
     void
-    add_edge(Edge e, const std::string &where, const std::string &initial,
+    add_edge(Edge e, const FluxFunction &f, const std::string &where, const std::string &initial,
              const std::string &far_end_data, const std::string &initial_name,
              const std::string &far_end_name);
     /// per vertex: whether its initial value was given (else the default)

@@ -43,23 +43,18 @@
  * unphysical but the flux is defined there; at degree 0 the scheme is
  * monotone and keeps u in the range of the data by Proposition 4.11.)
  *
- * Every edge has its own System object (its flux law and parameters): one
- * DGOperator per edge and mesh, so there are no per-cell coefficients
- * (n_coefficients = 0). A flux that varied inside an edge would use them.
+ * EdgeLaw is what the network engine (granular_dg/network/network.h) asks of
+ * the physics of an edge: its flux law with the method's numerical flux.
  */
 
-#include <deal.II/base/tensor.h>
 #include <deal.II/base/vectorization.h>
 
 #include <granular_dg/base/parameters.h>
-#include <granular_dg/dg/boundary.h>
 #include <granular_dg/dg/numerical_flux.h>
 
-#include <array>
 #include <cmath>
 #include <sstream>
 #include <string>
-#include <vector>
 
 namespace granular_dg::network
 {
@@ -225,132 +220,48 @@ namespace granular_dg::network
     }
   };
 
-  /// The physics policy of one edge (the contract is in doc/engine.md).
-  class System
+  /// The physics of one edge for the network engine (NetworkProblem<Law>):
+  /// the flux law f and the numerical flux F of the method.
+  struct EdgeLaw
   {
-  public:
-    static constexpr unsigned int n_components    = 1;
-    /// the component the troubled-cell indicator watches
-    /// (Limiter/indicator): u
-    static constexpr unsigned int indicator_component = 0;
-    static constexpr unsigned int n_coefficients  = 0;
-    static constexpr const char  *name            = "scalar conservation law";
-    static constexpr bool         has_source_term = false;
+    FluxFunction  f;
+    NumericalFlux type = NumericalFlux::upwind;
 
-    template <typename Number>
-    using State = Tensor<1, 1, Number>;
-    template <typename Number>
-    using Flux = Tensor<1, 1, Tensor<1, 1, Number>>;
-    template <typename Number>
-    using Coefficients = std::array<Number, 0>;
-
-    explicit System(const FluxFunction &f = {},
-                    const NumericalFlux flux = NumericalFlux::upwind)
-      : f(f)
-      , flux_type(flux)
-    {}
-
-    const FluxFunction &
-    flux_function() const
-    {
-      return f;
-    }
-
-    Coefficients<double>
-    coefficients(const types::material_id) const
-    {
-      return {};
-    }
-
-    static std::vector<std::string>
-    component_names()
-    {
-      return {"u"};
-    }
-
-    static std::vector<std::string>
-    derived_names()
-    {
-      return {"flux"};
-    }
-
-    std::vector<double>
-    derived(const State<double> &U, const Coefficients<double> &) const
-    {
-      return {f.value(U[0])};
-    }
-
-    /// The L2 entropy u^2/2 (the "energy" column of the engine).
-    double
-    energy(const State<double> &U, const Coefficients<double> &) const
-    {
-      return 0.5 * U[0] * U[0];
-    }
-
-    template <typename Number>
-    Flux<Number>
-    flux(const State<Number> &U, const Coefficients<Number> &) const
-    {
-      Flux<Number> F;
-      F[0][0] = f.value(U[0]);
-      return F;
-    }
+    static constexpr const char *name = "scalar conservation law";
 
     template <typename Number>
     Number
-    max_wave_speed(const State<Number> &U, const Coefficients<Number> &) const
+    value(const Number &u) const
     {
-      return std::abs(f.derivative(U[0]));
+      return f.value(u);
     }
 
-    /// F* . n on a face with normal n = +-1: F(U_m, U_p) for n = +1, the
-    /// face's left state being the interior one, and -F(U_p, U_m) for n = -1.
+    /// f'(u), the characteristic speed
     template <typename Number>
-    State<Number>
-    numerical_flux(const State<Number>          &U_m,
-                   const State<Number>          &U_p,
-                   const Tensor<1, 1, Number>   &n,
-                   const Coefficients<Number>   &,
-                   const Coefficients<Number>   &) const
+    Number
+    derivative(const Number &u) const
     {
-      // exact selection: n is exactly +-1 in 1D
-      const Number left  = compare_and_apply_mask<SIMDComparison::greater_than>(
-        n[0], Number(0.), U_m[0], U_p[0]);
-      const Number right = compare_and_apply_mask<SIMDComparison::greater_than>(
-        n[0], Number(0.), U_p[0], U_m[0]);
-      State<Number> F;
-      F[0] = n[0] * f.numerical_flux(flux_type, left, right);
-      return F;
+      return f.derivative(u);
     }
 
-    /// outflow: U_p = U_m (zero gradient, the paper's "zero Neumann");
-    /// dirichlet: U_p = g (far-end inflow data, or the vertex value).
+    /// F(u_l, u_r) in the direction of the edge
     template <typename Number>
-    State<Number>
-    boundary_state(const dg::BoundaryKind       kind,
-                   const State<Number>         &U_m,
-                   const Tensor<1, 1, Number>  &,
-                   const State<Number>         &g,
-                   const Coefficients<Number>  &) const
+    Number
+    flux(const Number &u_l, const Number &u_r) const
     {
-      return kind == dg::BoundaryKind::dirichlet ? g : U_m;
-    }
-
-    void
-    eigenvectors(const State<double> &, const Tensor<1, 1> &, const Coefficients<double> &,
-                 Tensor<2, 1> &L, Tensor<2, 1> &R) const
-    {
-      L[0][0] = R[0][0] = 1.;
+      return f.numerical_flux(type, u_l, u_r);
     }
 
     std::string
-    admissibility_violation(const State<double> &U, const Coefficients<double> &) const
+    describe() const
     {
-      return std::isfinite(U[0]) ? "" : "state is not finite";
+      return f.describe();
     }
 
-  private:
-    FluxFunction  f;
-    NumericalFlux flux_type;
+    std::string
+    flux_name() const
+    {
+      return numerical_flux_names.name(type);
+    }
   };
 } // namespace granular_dg::network

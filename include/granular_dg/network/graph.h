@@ -2,8 +2,7 @@
 
 #include <deal.II/base/numbers.h>
 #include <deal.II/base/point.h>
-
-#include <granular_dg/equations/network/system.h>
+#include <deal.II/base/tensor.h>
 
 #include <cstdint>
 #include <optional>
@@ -12,6 +11,8 @@
 
 namespace granular_dg::network
 {
+  using namespace dealii;
+
   /// The end of an edge that meets no vertex (inflow data or outflow).
   constexpr unsigned int free_end = numbers::invalid_unsigned_int;
 
@@ -41,7 +42,6 @@ namespace granular_dg::network
     unsigned int from   = free_end;
     unsigned int to     = free_end;
     double       length = 1.;
-    FluxFunction flux;
     FarEnd       far_end = FarEnd::outflow;
 
     /// boundary ids of the edge's Triangulation<1>: 0 at x = 0, 1 at x = L
@@ -94,7 +94,8 @@ namespace granular_dg::network
   };
 
   /// A directed graph: edges between vertices or free ends. The paper's star
-  /// graph is the graph with one vertex.
+  /// graph is the graph with one vertex. It holds no physics: the engine
+  /// (NetworkProblem) takes the flux law of every edge beside it.
   struct Graph
   {
     std::vector<Vertex> vertices;

@@ -1,8 +1,12 @@
+#pragma once
+
 /**
  * The network's output (solution-NNNN.vtu through deal.II's DataOutBase with
  * every edge drawn in the plane, under MPI one piece per rank and a .pvtu;
  * profile-NNNN-edge-K.csv), a single run on the TimeLoop, and the
- * convergence study.
+ * convergence study: a scene includes this file once and instantiates
+ * NetworkProblem<Law>::write_snapshot(), run_network() and
+ * run_network_convergence() for its Law.
  */
 
 #include <deal.II/base/data_out_base.h>
@@ -13,7 +17,7 @@
 #include <granular_dg/base/errors.h>
 #include <granular_dg/base/output.h>
 #include <granular_dg/base/time_loop.h>
-#include <granular_dg/equations/network/network.h>
+#include <granular_dg/network/network.h>
 
 #include <cmath>
 #include <fstream>
@@ -21,9 +25,9 @@
 
 namespace granular_dg::network
 {
-  namespace
+  namespace internal
   {
-    std::string
+    inline std::string
     snapshot_name(const std::string &prefix, const unsigned int index, const std::string &suffix)
     {
       return prefix + Utilities::int_to_string(index, 4) + suffix;
@@ -32,7 +36,7 @@ namespace granular_dg::network
     /// A line patch in the plane through the given points with the values of
     /// u, f(u), the edge coordinate and the edge number at each (points of a
     /// DataOutBase patch: n_subdivisions + 1 of them, in order).
-    DataOutBase::Patch<1, 2>
+    inline DataOutBase::Patch<1, 2>
     line_patch(const std::vector<Point<2>> &points, const std::vector<std::array<double, 4>> &values,
                const unsigned int index)
     {
@@ -56,9 +60,9 @@ namespace granular_dg::network
 
     /// the names of the VTU fields (u, its flux, the coordinate along the
     /// edge, the edge's number: 0 for a vertex)
-    const std::vector<std::string> vtu_fields{"u", "flux", "x_edge", "edge"};
+    inline const std::vector<std::string> vtu_fields{"u", "flux", "x_edge", "edge"};
 
-    DataOutBase::VtkFlags
+    inline DataOutBase::VtkFlags
     vtu_flags(const double time, const unsigned int index)
     {
       DataOutBase::VtkFlags flags(time, index);
@@ -66,12 +70,13 @@ namespace granular_dg::network
       flags.compression_level   = DataOutBase::VtkFlags::best_speed;
       return flags;
     }
-  } // namespace
+  } // namespace internal
 
+  template <typename Law>
   void
-  NetworkProblem::write_vtu(const std::string &directory, const std::string &name,
-                            const unsigned int index, const double time, Samples samples,
-                            const std::vector<double> &vertices) const
+  NetworkProblem<Law>::write_vtu(const std::string &directory, const std::string &name,
+                                 const unsigned int index, const double time, Samples samples,
+                                 const std::vector<double> &vertices) const
   {
     // one patch per edge through all its sample points (the points of a
     // face appear twice, once with each cell's trace: the patch has a line
@@ -88,10 +93,10 @@ namespace granular_dg::network
           {
             const auto p = embed(k, x);
             points.emplace_back(p[0], p[1]);
-            values.push_back({{value, net.edges[k].flux.value(value), x, double(k + 1)}});
+            values.push_back({{value, laws[k].value(value), x, double(k + 1)}});
           }
         if (!points.empty())
-          patches.push_back(line_patch(points, values, patches.size()));
+          patches.push_back(internal::line_patch(points, values, patches.size()));
         // (the samples of an edge are in its patch now)
         Samples::value_type().swap(samples[k]);
       }
@@ -101,18 +106,19 @@ namespace granular_dg::network
       if (ranks->reports_vertex(v))
         {
           const Point<2> &p = embed.vertex(v);
-          patches.push_back(line_patch({p, p},
+          patches.push_back(internal::line_patch({p, p},
                                        {{{vertices[v], 0., 0., 0.}}, {{vertices[v], 0., 0., 0.}}},
                                        patches.size()));
         }
     std::ofstream out(directory + "/" + name);
-    DataOutBase::write_vtu(patches, vtu_fields, {}, vtu_flags(time, index), out);
+    DataOutBase::write_vtu(patches, internal::vtu_fields, {}, internal::vtu_flags(time, index), out);
   }
 
+  template <typename Law>
   void
-  NetworkProblem::write_profiles(const std::string &directory, const unsigned int index,
-                                 const double time, const Samples &profile,
-                                 const std::vector<double> &vertices) const
+  NetworkProblem<Law>::write_profiles(const std::string &directory, const unsigned int index,
+                                      const double time, const Samples &profile,
+                                      const std::vector<double> &vertices) const
   {
     if (options.profiles == Profiles::one_file)
       {
@@ -120,13 +126,13 @@ namespace granular_dg::network
         if (exact)
           header.push_back("exact");
         CsvWriter csv;
-        csv.open(directory + "/" + snapshot_name("profile-", index, ".csv"), header,
+        csv.open(directory + "/" + internal::snapshot_name("profile-", index, ".csv"), header,
                  "time = " + format_number(time) + "\n# edge: the edge's place in the graph "
                  "(1, 2, ...), x its coordinate");
         for (unsigned int k = 0; k < net.edges.size(); ++k)
           for (const auto &[x, value] : profile[k])
             {
-              std::vector<double> row{double(k + 1), x, value, net.edges[k].flux.value(value)};
+              std::vector<double> row{double(k + 1), x, value, laws[k].value(value)};
               if (exact)
                 row.push_back(exact->value(k, x, time));
               csv.row(row);
@@ -142,7 +148,7 @@ namespace granular_dg::network
         std::ostringstream comment;
         comment << "time = " << format_number(time) << "\n# " << e.label << ": "
                 << net.describe(k) << ", length " << format_number(e.length) << ", "
-                << e.flux.describe();
+                << laws[k].describe();
         if (net.is_star())
           comment << "; vertex value " << format_number(vertices[0]);
         for (const unsigned int v : {e.from, e.to})
@@ -150,11 +156,11 @@ namespace granular_dg::network
             comment << "; " << net.vertices[v].label << " value " << format_number(vertices[v]);
         CsvWriter csv;
         csv.open(directory + "/" +
-                   snapshot_name("profile-", index, "-edge-" + std::to_string(k + 1) + ".csv"),
+                   internal::snapshot_name("profile-", index, "-edge-" + std::to_string(k + 1) + ".csv"),
                  header, comment.str());
         for (const auto &[x, value] : profile[k])
           {
-            std::vector<double> row{x, value, e.flux.value(value)};
+            std::vector<double> row{x, value, laws[k].value(value)};
             if (exact)
               row.push_back(exact->value(k, x, time));
             csv.row(row);
@@ -162,9 +168,10 @@ namespace granular_dg::network
       }
   }
 
+  template <typename Law>
   SnapshotFiles
-  NetworkProblem::write_snapshot(const std::string &directory, const unsigned int index,
-                                 const double time)
+  NetworkProblem<Law>::write_snapshot(const std::string &directory, const unsigned int index,
+                                      const double time)
   {
     // the profiles gathered on rank 0, which writes them; the VTU in one
     // file on one rank (from the same samples when the profiles sample
@@ -184,7 +191,7 @@ namespace granular_dg::network
     files.main_file = "profile files";
     if (!vtu)
       return files;
-    const std::string base = snapshot_name("solution-", index, "");
+    const std::string base = internal::snapshot_name("solution-", index, "");
     if (one_file)
       {
         write_vtu(directory, base + ".vtu", index, time, std::move(vtu_samples), vertices);
@@ -205,37 +212,40 @@ namespace granular_dg::network
             record_output_file(directory, pieces.back());
           }
         std::ofstream out(directory + "/" + base + ".pvtu");
-        DataOutBase::write_pvtu_record(out, pieces, vtu_fields, {}, vtu_flags(time, index));
+        DataOutBase::write_pvtu_record(out, pieces, internal::vtu_fields, {}, internal::vtu_flags(time, index));
         record_output_file(directory, base + ".pvtu");
       }
     files.pvd_entry = files.main_file = base + ".pvtu";
     return files;
   }
 
+  template <typename Law>
   RunResult
-  run_network(const Graph &graph, const std::vector<EdgeData> &data,
+  run_network(const Graph &graph, const std::vector<Law> &laws, const std::vector<EdgeData> &data,
               const dg::DiscretizationParameters &method, const NetworkOptions &options,
               const ExactSolution *exact, const RunParameters &params, const bool write_files,
               const std::string &scene)
   {
-    NetworkProblem p(graph, method, options, data, exact, scene);
+    NetworkProblem<Law> p(graph, laws, method, options, data, exact, scene);
     TimeLoop       loop(p, params, write_files);
     return loop.run();
   }
 
-  namespace
+  namespace internal
   {
     /// "level" of a number of cells per unit length (log2 when a power of 2)
-    double
+    inline double
     level_of(const double cells)
     {
       const double l = std::log2(cells);
       return std::abs(l - std::round(l)) < 1e-12 ? std::round(l) : l;
     }
-  } // namespace
+  } // namespace internal
 
+  template <typename Law>
   void
-  run_network_convergence(const Graph &graph, const std::vector<EdgeData> &data,
+  run_network_convergence(const Graph &graph, const std::vector<Law> &laws,
+                          const std::vector<EdgeData> &data,
                           const dg::DiscretizationParameters &method,
                           const NetworkOptions &options, const ExactSolution &exact,
                           const RunParameters &params)
@@ -258,10 +268,10 @@ namespace granular_dg::network
       const auto     m        = method.for_study(params, i);
       NetworkOptions o        = options;
       o.cells_per_unit_length = cells;
-      NetworkProblem      p(graph, m, o, data, &exact);
+      NetworkProblem<Law> p(graph, laws, m, o, data, &exact);
       const RunResult     r = TimeLoop(p, params, false).run();
       const auto          e = p.errors(exact, r.final_time);
-      std::vector<double> row{level_of(cells), double(cells), p.min_cell_size(),
+      std::vector<double> row{internal::level_of(cells), double(cells), p.min_cell_size(),
                               double(p.n_dofs()), m.cfl, double(r.n_steps), e.l1, e.l1_edges,
                               e.l1_vertex, e.l2, e.linf, p.mass_balance().max_residual,
                               p.mass_balance().max_step, r.time_loop_cpu_s, r.wall_time_s};

@@ -1,3 +1,10 @@
+#pragma once
+
+/**
+ * The members of EdgeLines<Law>: a scene includes this file once and
+ * instantiates them for its Law.
+ */
+
 #include <deal.II/base/polynomial.h>
 #include <deal.II/base/quadrature_lib.h>
 #include <deal.II/base/vectorization.h>
@@ -5,19 +12,15 @@
 #include <granular_dg/base/vectorized_math.h>
 #include <granular_dg/dg/limiter.templates.h>
 #include <granular_dg/dg/modal_layout.h>
-#include <granular_dg/equations/network/edge_lines.h>
+#include <granular_dg/network/edge_lines.h>
 
 #include <algorithm>
 #include <cmath>
 
 namespace granular_dg::network
 {
-  namespace
+  namespace internal
   {
-    using VA = VectorizedArray<double>;
-    /// cells per SIMD batch (the native width)
-    constexpr unsigned int W = VA::size();
-
     /// the state at Gauss point q of a cell with modes u (double or a batch)
     template <unsigned int nm, typename Number, typename Basis>
     DEAL_II_ALWAYS_INLINE inline Number
@@ -28,25 +31,11 @@ namespace granular_dg::network
         s += u[k] * B[k];
       return s;
     }
-  } // namespace
+  } // namespace internal
 
-  /// An edge's flux law and numerical flux, copied into the kernels (a
-  /// local copy: the compiler need not reload it after every store).
-  struct EdgeLines::Law
-  {
-    FluxFunction  f;
-    NumericalFlux type;
-
-    template <typename Number>
-    Number
-    flux(const Number &u_l, const Number &u_r) const
-    {
-      return f.numerical_flux(type, u_l, u_r);
-    }
-  };
-
-  EdgeLines::EdgeLines(const EdgeMethod &m, std::vector<FluxFunction> flux,
-                       const std::vector<unsigned int> &n_cells, const std::vector<double> &sizes)
+  template <typename Law>
+  EdgeLines<Law>::EdgeLines(const EdgeMethod &m, std::vector<Law> flux,
+                            const std::vector<unsigned int> &n_cells, const std::vector<double> &sizes)
     : method(m)
     , laws(std::move(flux))
     , cells(n_cells)
@@ -97,15 +86,17 @@ namespace granular_dg::network
       }
   }
 
+  template <typename Law>
   double
-  EdgeLines::trace(const double *u, const unsigned int e, const unsigned int side) const
+  EdgeLines<Law>::trace(const double *u, const unsigned int e, const unsigned int side) const
   {
     return trace_at(u + index(e, side == 0 ? 0 : cells[e] - 1), side);
   }
 
+  template <typename Law>
   double
-  EdgeLines::value(const double *u, const unsigned int e, const unsigned int c,
-                   const double xi) const
+  EdgeLines<Law>::value(const double *u, const unsigned int e, const unsigned int c,
+                        const double xi) const
   {
     const double *x   = u + index(e, c);
     double        sum = 0;
@@ -114,17 +105,19 @@ namespace granular_dg::network
     return sum;
   }
 
+  template <typename Law>
   double
-  EdgeLines::outer_of(const unsigned int e, const unsigned int side, const double inner) const
+  EdgeLines<Law>::outer_of(const unsigned int e, const unsigned int side, const double inner) const
   {
     return end_kind[2 * e + side] == EndKind::outflow ? inner : outer[2 * e + side];
   }
 
   // ---------------------------------------------------------------- the rate
 
+  template <typename Law>
   void
-  EdgeLines::stage(const double *src, double *dst, const double *old, const double a,
-                   const double b, const double gamma) const
+  EdgeLines<Law>::stage(const double *src, double *dst, const double *old, const double a,
+                        const double b, const double gamma) const
   {
     dg::with_n_modes(modes, [&](auto nm) {
       constexpr unsigned int n = decltype(nm)::value;
@@ -142,9 +135,10 @@ namespace granular_dg::network
   /// every array index i of the edge and its rate r (out.cells() for the
   /// values of a SIMD batch), a cell's entries after all reads of it and of
   /// its left neighbour (out may overwrite src).
+  template <typename Law>
   template <unsigned int nm, typename Out>
   void
-  EdgeLines::rate_edge(const double *src, const unsigned int e, const Out &out) const
+  EdgeLines<Law>::rate_edge(const double *src, const unsigned int e, const Out &out) const
   {
     constexpr unsigned int nq = nm + 1;
     const unsigned int     n  = cells[e];
@@ -160,7 +154,8 @@ namespace granular_dg::network
           s1 += x[k] * at_1[k];
         }
     };
-    const Law law{laws[e], method.flux};
+    // a local copy: the compiler need not reload it after every store
+    const Law law = laws[e];
     double    U0, U1;
     traces(0, U0, U1);
     // the flux through the left face of cell c, kept from one cell to the next
@@ -190,7 +185,7 @@ namespace granular_dg::network
         for (unsigned int q = 0; nm > 1 && q < nq; ++q)
           {
             const auto  &D  = derivative[q];
-            const double wf = weights[q] * law.f.value(point_state<nm>(u, basis[q]));
+            const double wf = weights[q] * law.value(internal::point_state<nm>(u, basis[q]));
             for (unsigned int k = 0; k < nm; ++k)
               res[k] += wf * D[k];
           }
@@ -224,8 +219,9 @@ namespace granular_dg::network
 
   /// The cells c + 1 .. c + W - 1 of the rank's last edge e and a cell of
   /// zeros after them (the cells rate_batch() reads as `next`).
+  template <typename Law>
   const double *
-  EdgeLines::last_cells(const double *src, const unsigned int e, const unsigned int c) const
+  EdgeLines<Law>::last_cells(const double *src, const unsigned int e, const unsigned int c) const
   {
     after_last.assign(W * modes, 0.);
     std::copy(src + index(e, c + 1), src + index(e, c + W), after_last.begin());
@@ -238,11 +234,12 @@ namespace granular_dg::network
   /// the batch ends the edge, the last of them is the next edge's first cell
   /// (after the rank's last edge a cell of zeros, last_cells()), and the face
   /// to it takes the flux through the edge's end instead.
+  template <typename Law>
   template <unsigned int nm, typename Out>
   void
-  EdgeLines::rate_batch(const double *src, const unsigned int e, const unsigned int c,
-                        const double *next, const Law &law, double &F_left,
-                        const Out &out) const
+  EdgeLines<Law>::rate_batch(const double *src, const unsigned int e, const unsigned int c,
+                             const double *next, const Law &law, double &F_left,
+                             const Out &out) const
   {
     constexpr unsigned int nq = nm + 1;
     VA                     u[nm], v[nm];
@@ -252,7 +249,7 @@ namespace granular_dg::network
     for (unsigned int q = 0; nm > 1 && q < nq; ++q)
       {
         const auto &D  = derivative[q];
-        const VA    wf = weights[q] * law.f.value(point_state<nm>(u, basis[q]));
+        const VA    wf = weights[q] * law.value(internal::point_state<nm>(u, basis[q]));
         for (unsigned int k = 0; k < nm; ++k)
           res[k] += wf * D[k];
       }
@@ -278,10 +275,11 @@ namespace granular_dg::network
 
   /// dg::LineOperator::subcell_rate(): the first-order finite-volume rate
   /// of the p + 1 subcells of a cell of edge e (modes u) as Legendre modes.
+  template <typename Law>
   template <unsigned int nm>
   void
-  EdgeLines::subcell_rate(const double *u, const unsigned int e, const Law &law,
-                          const double F_left, const double F_right, double (&fv)[nm]) const
+  EdgeLines<Law>::subcell_rate(const double *u, const unsigned int e, const Law &law,
+                               const double F_left, const double F_right, double (&fv)[nm]) const
   {
     double mean[nm];
     for (unsigned int j = 0; j < nm; ++j)
@@ -311,9 +309,10 @@ namespace granular_dg::network
 
   /// The blending factors before smoothing of the cells of edge e; the
   /// floor is a fraction of the edge's largest cell mean.
+  template <typename Law>
   template <unsigned int nm>
   void
-  EdgeLines::raw_blending_factors(const double *src, const unsigned int e) const
+  EdgeLines<Law>::raw_blending_factors(const double *src, const unsigned int e) const
   {
     double scale = 0;
     for (unsigned int c = 0; c < cells[e]; ++c)
@@ -325,8 +324,9 @@ namespace granular_dg::network
 
   /// max(alpha_c, alpha_N / 2) over the neighbours N on the edge (kept for
   /// the output)
+  template <typename Law>
   double
-  EdgeLines::blending_factor(const unsigned int e, const unsigned int c) const
+  EdgeLines<Law>::blending_factor(const unsigned int e, const unsigned int c) const
   {
     const double *raw = raw_alpha.data() + first[e];
     double        a   = raw[c];
@@ -338,16 +338,18 @@ namespace granular_dg::network
     return a;
   }
 
+  template <typename Law>
   unsigned int
-  EdgeLines::n_blended_cells() const
+  EdgeLines<Law>::n_blended_cells() const
   {
     return std::count_if(alpha.begin(), alpha.end(), [](const double a) { return a > 0; });
   }
 
   // ---------------------------------------------------------------- the CFL scan
 
+  template <typename Law>
   double
-  EdgeLines::max_speed_over_h(const double *u, const double *vertex_values) const
+  EdgeLines<Law>::max_speed_over_h(const double *u, const double *vertex_values) const
   {
     return dg::with_n_modes(modes, [&](auto nm) {
       // (the largest over the lanes once at the end: max is exact in any order)
@@ -366,19 +368,20 @@ namespace granular_dg::network
   /// values at its vertex ends (into result), divided by h once for the
   /// batches and once for the rest (division by h > 0 is monotone: the same
   /// maximum as dividing every speed)
+  template <typename Law>
   template <unsigned int nm>
   void
-  EdgeLines::max_speed_edge(const double *src, const double *vertex_values,
-                            const unsigned int e, VA &lanes, double &result) const
+  EdgeLines<Law>::max_speed_edge(const double *src, const double *vertex_values,
+                                 const unsigned int e, VA &lanes, double &result) const
   {
-    const FluxFunction f          = laws[e];
+    const Law          f          = laws[e];
     const auto         cell_speed = [&](const auto *u) {
       using Number    = std::remove_cv_t<std::remove_pointer_t<decltype(u)>>;
       // (degree 0: every point has the cell's value)
       Number cell_max = 0.;
       for (unsigned int q = 0; q < (nm > 1 ? nm + 1 : 1); ++q)
         cell_max = std::max(cell_max, std::max(std::abs(f.derivative(
-                                                 point_state<nm>(u, basis[q]))),
+                                                 internal::point_state<nm>(u, basis[q]))),
                                                Number(0.)));
       return cell_max;
     };
@@ -405,8 +408,9 @@ namespace granular_dg::network
 
   // ---------------------------------------------------------------- the limiter
 
+  template <typename Law>
   unsigned int
-  EdgeLines::limit(double *u) const
+  EdgeLines<Law>::limit(double *u) const
   {
     if (method.limiter == dg::LimiterType::none || modes == 1)
       return 0;
@@ -426,9 +430,10 @@ namespace granular_dg::network
   /// dg::ModalLimiter::apply() on edge e as a line of its own: the
   /// indicator's floor from the edge's largest mean, the flags of the
   /// indicators that look at neighbours from the unlimited state
+  template <typename Law>
   template <unsigned int nm>
   unsigned int
-  EdgeLines::limit_edge(double *u, const unsigned int e) const
+  EdgeLines<Law>::limit_edge(double *u, const unsigned int e) const
   {
     using dg::TroubleIndicator;
     const unsigned int n     = cells[e];
@@ -469,9 +474,10 @@ namespace granular_dg::network
   /// (every cell examined): the TVB test by dg::internal::tvb_keeps_lanes(),
   /// which decides as tvb_keeps() does, and the TVB minmod slope lane by
   /// lane; the troubled cells.
+  template <typename Law>
   template <unsigned int nm>
   unsigned int
-  EdgeLines::limit_batch(double *u, const unsigned int e, const unsigned int c) const
+  EdgeLines<Law>::limit_batch(double *u, const unsigned int e, const unsigned int c) const
   {
     VA x[nm];
     load_cell_major<nm>(u + index(e, c), x);
@@ -530,10 +536,11 @@ namespace granular_dg::network
   /// dg::ModalLimiter::limit_cell() of a scalar law (the characteristic
   /// field is u itself): the TVB test of the jumps to the faces against the
   /// differences of the means, the slope replaced by the TVB minmod one
+  template <typename Law>
   template <unsigned int nm>
   bool
-  EdgeLines::limit_cell(double *u, const unsigned int e, const unsigned int c,
-                        const double floor) const
+  EdgeLines<Law>::limit_cell(double *u, const unsigned int e, const unsigned int c,
+                             const double floor) const
   {
     using dg::TroubleIndicator;
     double *x = u + index(e, c);
@@ -577,10 +584,11 @@ namespace granular_dg::network
 
   /// dg::ModalLimiter::kxrcf_indicated() in 1D: the jumps of u at the
   /// cell's inner faces against h^{(p+1)/2} and the cell's size of u
+  template <typename Law>
   template <unsigned int nm>
   bool
-  EdgeLines::kxrcf_indicated(const double *u, const unsigned int e, const unsigned int c,
-                             const double floor) const
+  EdgeLines<Law>::kxrcf_indicated(const double *u, const unsigned int e, const unsigned int c,
+                                  const double floor) const
   {
     const auto face_value = [&](const unsigned int cell, const unsigned int f) {
       double U = 0;

@@ -3,7 +3,7 @@
 #include <deal.II/lac/sparsity_tools.h>
 
 #include <granular_dg/base/errors.h>
-#include <granular_dg/equations/network/edge_partition.h>
+#include <granular_dg/network/edge_partition.h>
 
 #include <algorithm>
 #include <numeric>

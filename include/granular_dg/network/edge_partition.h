@@ -3,7 +3,7 @@
 #include <deal.II/base/mpi.h>
 
 #include <granular_dg/base/evolution.h>
-#include <granular_dg/equations/network/graph.h>
+#include <granular_dg/network/graph.h>
 
 #include <optional>
 #include <string>

@@ -1,11 +1,16 @@
+#pragma once
+
+/**
+ * The members of NetworkProblem<Law> but its output (output.templates.h): a
+ * scene includes this file once and instantiates them for its Law.
+ */
+
 #include <deal.II/base/quadrature_lib.h>
-#include <deal.II/base/vectorization.h>
 
 #include <granular_dg/base/errors.h>
 #include <granular_dg/base/output.h>
-#include <granular_dg/base/vectorized_math.h>
 #include <granular_dg/dg/solution_transfer.h>
-#include <granular_dg/equations/network/network.h>
+#include <granular_dg/network/network.h>
 
 #include <algorithm>
 #include <cmath>
@@ -15,199 +20,21 @@
 
 namespace granular_dg::network
 {
-  void
-  NetworkState::reinit(const NetworkState &other)
-  {
-    edges.assign(other.edges.size(), 0.);
-    vertices.assign(other.vertices.size(), 0.);
-  }
-
-  namespace
-  {
-    /// One SIMD pass over v: whether every entry is finite (x - x is 0 for a
-    /// finite x and NaN otherwise, and a NaN stays in a sum), and with
-    /// `range` [min, max] of the entries when they are (min and max are
-    /// exact in any order)
-    struct Scan
-    {
-      bool   finite;
-      double lo, hi;
-    };
-
-    template <bool range>
-    Scan
-    scan(const std::vector<double> &v)
-    {
-      using VA       = VectorizedArray<double>;
-      VA          lo = INFINITY, hi = -INFINITY, sum = 0.;
-      std::size_t i  = 0;
-      for (; i + VA::size() <= v.size(); i += VA::size())
-        {
-          VA x;
-          x.load(v.data() + i);
-          sum += x - x;
-          if constexpr (range)
-            {
-              lo = std::min(lo, x);
-              hi = std::max(hi, x);
-            }
-        }
-      Scan result{granular_dg::all_finite(sum), INFINITY, -INFINITY};
-      for (unsigned int l = 0; l < VA::size(); ++l)
-        {
-          result.lo = std::min(result.lo, lo[l]);
-          result.hi = std::max(result.hi, hi[l]);
-        }
-      for (; i < v.size(); ++i)
-        {
-          result.finite = result.finite && std::isfinite(v[i]);
-          result.lo     = std::min(result.lo, v[i]);
-          result.hi     = std::max(result.hi, v[i]);
-        }
-      return result;
-    }
-
-    /// x[0] + ... + x[7], added pairwise
-    double
-    pairwise_sum(const double (&x)[8])
-    {
-      return ((x[0] + x[1]) + (x[2] + x[3])) + ((x[4] + x[5]) + (x[6] + x[7]));
-    }
-
-#if DEAL_II_VECTORIZATION_WIDTH_IN_BITS >= 512 && defined(__AVX512F__)
-    /// edge_sums() below at stride 1 (degree 0), the partial sums in the
-    /// lanes of one register each: the same additions in the same order, so
-    /// the same result to the bit. Masked loads end the edge.
-    std::array<double, 2>
-    contiguous_edge_sums(const double *mean, const unsigned int n)
-    {
-      // the first k of the 8 lanes
-      const auto first = [](const unsigned int k) {
-        return __mmask8(k >= 8 ? 0xff : (1u << k) - 1);
-      };
-      const __m512d sign = _mm512_set1_pd(-0.);
-      __m512d       sum = _mm512_setzero_pd(), tv = _mm512_setzero_pd();
-      for (unsigned int c = 0; c < n; c += 8)
-        {
-          // lane l: cell c + l and the jump from it to c + l + 1
-          const __mmask8 cells = first(n - c), jumps = first(n - c - 1);
-          const __m512d  x     = _mm512_maskz_loadu_pd(cells, mean + c);
-          const __m512d  next  = _mm512_maskz_loadu_pd(jumps, mean + c + 1);
-          sum = _mm512_mask_add_pd(sum, cells, sum, x);
-          tv  = _mm512_mask_add_pd(tv, jumps, tv, _mm512_andnot_pd(sign, _mm512_sub_pd(next, x)));
-        }
-      double s[8], t[8];
-      _mm512_storeu_pd(s, sum);
-      _mm512_storeu_pd(t, tv);
-      return {{pairwise_sum(s), pairwise_sum(t)}};
-    }
-#endif
-
-    /// The sum of the n cell means of an edge (at mean[c * stride]) and their
-    /// total variation, each over 8 interleaved partial sums (cell c in sum
-    /// c % 8: no long chain of dependent additions) added pairwise. Written
-    /// in blocks of 8 so that the partial sums stay in registers.
-    std::array<double, 2>
-    edge_sums(const double *mean, const unsigned int stride, const unsigned int n)
-    {
-#if DEAL_II_VECTORIZATION_WIDTH_IN_BITS >= 512 && defined(__AVX512F__)
-      if (stride == 1)
-        return contiguous_edge_sums(mean, n);
-#endif
-      constexpr unsigned int L      = 8;
-      double                 sum[L] = {}, tv[L] = {};
-      const auto             add    = [&](const unsigned int c, const unsigned int l) {
-        sum[l] += mean[c * stride];
-        if (c + 1 < n)
-          tv[l] += std::abs(mean[(c + 1) * stride] - mean[c * stride]);
-      };
-      unsigned int c = 0;
-      for (; c + L <= n; c += L)
-        for (unsigned int l = 0; l < L; ++l)
-          add(c + l, l);
-      for (unsigned int l = 0; l < L; ++l)
-        if (c + l < n)
-          add(c + l, l);
-      return {{pairwise_sum(sum), pairwise_sum(tv)}};
-    }
-  } // namespace
-
-  void
-  add_cell_moments(const Function<1> &g, const std::vector<Polynomials::Legendre> &legendre,
-                   const QGauss<1> &quad, const double x0, const double h, const double a,
-                   const double b, std::vector<double> &result, const unsigned int depth)
-  {
-    const unsigned int n_modes = legendre.size();
-    auto moments = [&](const double lo, const double hi) {
-      std::vector<double> m(n_modes, 0.);
-      // the points in the cell's coordinate, from lo rather than from x:
-      // (x - x0) / h would carry the rounding of x magnified by x / h, and
-      // the two levels would then never agree in cells far from x = 0
-      // (2.5 10^6 evaluations of g per cell instead of 15 at 20000 cells per
-      // unit length, tests/network/cell_moments)
-      const double xi_lo = (lo - x0) / h, xi_width = (hi - lo) / h;
-      for (unsigned int q = 0; q < quad.size(); ++q)
-        {
-          const double x  = lo + (hi - lo) * quad.point(q)[0];
-          const double w  = (hi - lo) * quad.weight(q);
-          const double v  = g.value(Point<1>(x));
-          const double xi = xi_lo + xi_width * quad.point(q)[0];
-          for (unsigned int k = 0; k < n_modes; ++k)
-            m[k] += w * v * legendre[k].value(xi);
-        }
-      return m;
-    };
-    const double mid   = 0.5 * (a + b);
-    const auto   whole = moments(a, b);
-    auto         halves = moments(a, mid);
-    const auto   right  = moments(mid, b);
-    double       diff = 0, size = 0;
-    for (unsigned int k = 0; k < n_modes; ++k)
-      {
-        halves[k] += right[k];
-        diff = std::max(diff, std::abs(halves[k] - whole[k]));
-        size = std::max(size, std::abs(halves[k]));
-      }
-    if (diff <= 1e-15 * std::max(b - a, size) || depth >= 55)
-      {
-        for (unsigned int k = 0; k < n_modes; ++k)
-          result[k] += halves[k];
-        return;
-      }
-    add_cell_moments(g, legendre, quad, x0, h, a, mid, result, depth + 1);
-    add_cell_moments(g, legendre, quad, x0, h, mid, b, result, depth + 1);
-  }
-
-  std::vector<unsigned int>
-  edge_cells(const Graph &graph, const double cells_per_unit_length)
-  {
-    std::vector<unsigned int> n;
-    for (const Edge &e : graph.edges)
-      n.push_back(
-        std::max(1u, static_cast<unsigned int>(std::lround(e.length * cells_per_unit_length))));
-    return n;
-  }
-
-  double
-  snapshot_bytes(const unsigned long n_cells, const dg::DiscretizationParameters &method,
-                 const NetworkOptions &options)
-  {
-    const unsigned int points = method.profile_points > 0 ? method.profile_points :
-                                                            std::max(2u, method.degree + 1);
-    return n_cells * points * (options.write_vtu ? 60. : 0.) + n_cells * points * 40.;
-  }
-
-  NetworkProblem::NetworkProblem(const Graph &graph, const dg::DiscretizationParameters &m,
-                                 const NetworkOptions &o, std::vector<EdgeData> edge_data,
-                                 const ExactSolution *exact, const std::string &scene)
+  template <typename Law>
+  NetworkProblem<Law>::NetworkProblem(const Graph &graph, std::vector<Law> edge_laws,
+                                           const dg::DiscretizationParameters &m,
+                                           const NetworkOptions &o, std::vector<EdgeData> edge_data,
+                                           const ExactSolution *exact, const std::string &scene)
     : net(graph)
+    , laws(std::move(edge_laws))
     , method(m)
     , options(o)
     , data(std::move(edge_data))
     , exact(exact)
     , scene(scene)
   {
-    AssertThrow(data.size() == net.edges.size(), ExcMessage("one EdgeData per edge"));
+    AssertThrow(data.size() == net.edges.size() && laws.size() == net.edges.size(),
+                ExcMessage("one EdgeData and one law per edge"));
     h_min      = 1e300;
     edge_cells = network::edge_cells(net, options.cells_per_unit_length);
     for (unsigned int k = 0; k < net.edges.size(); ++k)
@@ -219,20 +46,20 @@ namespace granular_dg::network
 
     // this rank's edges in one line engine, in the partition's order
     local_edge.assign(net.edges.size(), -1);
-    std::vector<FluxFunction> laws;
+    std::vector<Law>          local_laws;
     std::vector<unsigned int> cells;
     std::vector<double>       sizes;
     for (const unsigned int k : ranks->edges())
       {
-        local_edge[k] = laws.size();
-        laws.push_back(net.edges[k].flux);
+        local_edge[k] = local_laws.size();
+        local_laws.push_back(laws[k]);
         cells.push_back(edge_cells[k]);
         sizes.push_back(edge_h[k]);
       }
-    const EdgeMethod edge_method{method.degree, options.flux,     method.limiter,
-                                 method.tvb_M,  method.indicator, method.indicator_threshold,
-                                 method.blending_max()};
-    lines = std::make_unique<EdgeLines>(edge_method, std::move(laws), cells, sizes);
+    const EdgeMethod edge_method{method.degree,    method.limiter,
+                                 method.tvb_M,     method.indicator,
+                                 method.indicator_threshold, method.blending_max()};
+    lines = std::make_unique<EdgeLines<Law>>(edge_method, std::move(local_laws), cells, sizes);
     for (const unsigned int k : ranks->edges())
       for (const unsigned int side : {0u, 1u})
         lines->kind(local(k), side) = net.edges[k].vertex_at(side) ? EndKind::vertex :
@@ -246,7 +73,7 @@ namespace granular_dg::network
         double width = 0;
         for (const auto &end : ends[v])
           width += 0.5 * edge_h[end.edge];
-        junctions.emplace_back(net, v, std::move(ends[v]), options.flux,
+        junctions.emplace_back(net, laws, v, std::move(ends[v]),
                                net.vertices[v].width_factor * width);
       }
 
@@ -281,7 +108,7 @@ namespace granular_dg::network
               owned ? lines->index(local(k), ends[i].incoming ? edge_cells[k] - 1 : 0) : 0;
             vertex_ends.source.push_back(slot >= 0 ? -1 - long(slot) : long(cell));
             vertex_ends.at_end.push_back(ends[i].incoming);
-            vertex_ends.law.push_back(net.edges[k].flux);
+            vertex_ends.law.push_back(laws[k]);
             if (owned)
               owned_ends.push_back({v, cell});
           }
@@ -295,35 +122,40 @@ namespace granular_dg::network
     u.edges.assign(lines->size(), 0.);
   }
 
-  NetworkProblem::~NetworkProblem() = default;
+  template <typename Law>
+  NetworkProblem<Law>::~NetworkProblem() = default;
 
+  template <typename Law>
   unsigned int
-  NetworkProblem::n_stages() const
+  NetworkProblem<Law>::n_stages() const
   {
     const bool euler = options.integrator == Integrator::forward_euler ||
                        (options.integrator == Integrator::automatic && method.degree == 0);
     return euler ? 1 : dg::SSPRK3<NetworkState>::n_stages;
   }
 
+  template <typename Law>
   unsigned long
-  NetworkProblem::n_dofs() const
+  NetworkProblem<Law>::n_dofs() const
   {
     // the edges' modes and the vertex values
     return net.vertices.size() + n_cells() * (method.degree + 1);
   }
 
+  template <typename Law>
   unsigned long
-  NetworkProblem::n_cells() const
+  NetworkProblem<Law>::n_cells() const
   {
     return std::accumulate(edge_cells.begin(), edge_cells.end(), 0ul);
   }
 
+  template <typename Law>
   EvolutionInfo
-  NetworkProblem::info() const
+  NetworkProblem<Law>::info() const
   {
     EvolutionInfo i;
     i.scene    = scene;
-    i.physics  = System::name;
+    i.physics  = Law::name;
     i.dim      = 1;
     i.degree   = method.degree;
     i.n_cells  = n_cells();
@@ -345,7 +177,7 @@ namespace granular_dg::network
                     " DoFs, degree " + std::to_string(method.degree) + ", " + integrator +
                     (ranks->parallel() ? "; " + ranks->describe() : "");
     i.method.add("engine", "line");
-    i.method.add("numerical_flux", numerical_flux_names.name(options.flux));
+    i.method.add("numerical_flux", laws.front().flux_name());
     i.method.add("limiter", method.limiter_name);
     if (method.blending_max() > 0)
       i.method.add("subcell_blending", method.blending_max());
@@ -355,14 +187,16 @@ namespace granular_dg::network
     return i;
   }
 
+  template <typename Law>
   double
-  NetworkProblem::trace(const unsigned int k, const bool at_end, const NetworkState &s) const
+  NetworkProblem<Law>::trace(const unsigned int k, const bool at_end, const NetworkState &s) const
   {
     return lines->trace(s.edges.data(), local(k), at_end);
   }
 
+  template <typename Law>
   double
-  NetworkProblem::initialize()
+  NetworkProblem<Law>::initialize()
   {
     const QGauss<1> quad(method.degree + 3);
     for (const unsigned int k : ranks->edges())
@@ -412,9 +246,10 @@ namespace granular_dg::network
     return 0.;
   }
 
+  template <typename Law>
   Inadmissible
-  NetworkProblem::failure(const double time, const int k, const double x, const double value,
-                          const std::string &reason) const
+  NetworkProblem<Law>::failure(const double time, const int k, const double x, const double value,
+                               const std::string &reason) const
   {
     Inadmissible f;
     f.time   = time;
@@ -427,8 +262,9 @@ namespace granular_dg::network
     return f;
   }
 
+  template <typename Law>
   void
-  NetworkProblem::check_initial_state(const double time)
+  NetworkProblem<Law>::check_initial_state(const double time)
   {
     NetworkState s = u;
     bounds         = {-INFINITY, INFINITY};
@@ -443,8 +279,9 @@ namespace granular_dg::network
       }
   }
 
+  template <typename Law>
   void
-  NetworkProblem::fill_traces(const NetworkState &s) const
+  NetworkProblem<Law>::fill_traces(const NetworkState &s) const
   {
     end_traces.resize(vertex_ends.source.size());
     for (std::size_t i = 0; i < end_traces.size(); ++i)
@@ -456,8 +293,9 @@ namespace granular_dg::network
       }
   }
 
+  template <typename Law>
   void
-  NetworkProblem::exchange_traces(const NetworkState &s) const
+  NetworkProblem<Law>::exchange_traces(const NetworkState &s) const
   {
     if (ranks->n_cut_vertices() == 0)
       return;
@@ -468,8 +306,9 @@ namespace granular_dg::network
     ranks->exchange(exchanged);
   }
 
+  template <typename Law>
   double
-  NetworkProblem::balance_at(const unsigned int v, const double time) const
+  NetworkProblem<Law>::balance_at(const unsigned int v, const double time) const
   {
     const double *traces = traces_at(v);
     if (!ranks->parallel())
@@ -486,8 +325,9 @@ namespace granular_dg::network
       }
   }
 
+  template <typename Law>
   std::vector<double>
-  NetworkProblem::vertex_values() const
+  NetworkProblem<Law>::vertex_values() const
   {
     if (!ranks->parallel())
       return u.vertices;
@@ -499,8 +339,9 @@ namespace granular_dg::network
     return all;
   }
 
+  template <typename Law>
   double
-  NetworkProblem::far_end_inflow(const NetworkState &s) const
+  NetworkProblem<Law>::far_end_inflow(const NetworkState &s) const
   {
     double sum = 0;
     for (const auto &[k, side] : free_faces)
@@ -511,20 +352,21 @@ namespace granular_dg::network
         const double inside = trace(k, side, s);
         const double ghost =
           e.far_end == FarEnd::dirichlet ? lines->outer_state(local(k), side) : inside;
-        sum += side == 0 ? e.flux.numerical_flux(options.flux, ghost, inside) :
-                           -e.flux.numerical_flux(options.flux, inside, ghost);
+        sum += side == 0 ? laws[k].flux(ghost, inside) : -laws[k].flux(inside, ghost);
       }
     return sum;
   }
 
+  template <typename Law>
   double
-  NetworkProblem::vertex_state(const unsigned int v, const NetworkState &s, const double time) const
+  NetworkProblem<Law>::vertex_state(const unsigned int v, const NetworkState &s, const double time) const
   {
     return junctions[v].width() > 0 ? s.vertices[v] : balance_at(v, time);
   }
 
+  template <typename Law>
   const std::vector<double> &
-  NetworkProblem::couple(const double time, const NetworkState &src) const
+  NetworkProblem<Law>::couple(const double time, const NetworkState &src) const
   {
     rates.resize(junctions.size());
     exchange_traces(src);
@@ -542,8 +384,9 @@ namespace granular_dg::network
     return rates;
   }
 
+  template <typename Law>
   void
-  NetworkProblem::set_end_states(const double time) const
+  NetworkProblem<Law>::set_end_states(const double time) const
   {
     for (const auto &[face, v] : vertex_faces)
       lines->outer_state(face / 2, face % 2) = vertex_u0[v];
@@ -560,9 +403,10 @@ namespace granular_dg::network
       }
   }
 
+  template <typename Law>
   void
-  NetworkProblem::apply_stage(const double time, const NetworkState &src, NetworkState &dst,
-                              const dg::StageUpdate<NetworkState> &s) const
+  NetworkProblem<Law>::apply_stage(const double time, const NetworkState &src, NetworkState &dst,
+                                   const dg::StageUpdate<NetworkState> &s) const
   {
     // the vertex coupling is part of the right-hand side of the network
     StepPhases::Scope scope(phases, StepPhases::operator_apply);
@@ -576,8 +420,9 @@ namespace granular_dg::network
         dg::stage_value(s, src.vertices[v], s.old ? s.old->vertices[v] : 0., rate[v]);
   }
 
+  template <typename Law>
   std::pair<double, double>
-  NetworkProblem::range_of_step(const double time, const double dt) const
+  NetworkProblem<Law>::range_of_step(const double time, const double dt) const
   {
     double lo = INFINITY, hi = -INFINITY;
     for (const unsigned int v : ranks->vertices())
@@ -585,7 +430,7 @@ namespace granular_dg::network
         lo = std::min(lo, u.vertices[v]);
         hi = std::max(hi, u.vertices[v]);
       }
-    const Scan edges = scan<true>(u.edges);
+    const internal::Scan edges = internal::scan<true>(u.edges);
     lo               = std::min(lo, edges.lo);
     hi               = std::max(hi, edges.hi);
     for (const auto &[k, side] : data_faces)
@@ -599,9 +444,10 @@ namespace granular_dg::network
     return {ranks->min(lo), ranks->max(hi)};
   }
 
+  template <typename Law>
   void
-  NetworkProblem::check_maximum_principle(const NetworkState &s, const double stage_time,
-                                          const double lo_s, const double hi_s)
+  NetworkProblem<Law>::check_maximum_principle(const NetworkState &s, const double stage_time,
+                                               const double lo_s, const double hi_s)
   {
     const auto [lo, hi] = bounds;
     const double tol    = 1e-12 * (hi - lo + std::max(std::abs(lo), std::abs(hi)));
@@ -624,8 +470,9 @@ namespace granular_dg::network
         }
   }
 
+  template <typename Law>
   void
-  NetworkProblem::post_stage(NetworkState &s, const double stage_time)
+  NetworkProblem<Law>::post_stage(NetworkState &s, const double stage_time)
   {
     {
       StepPhases::Scope scope(phases, StepPhases::limiter);
@@ -651,8 +498,9 @@ namespace granular_dg::network
     post_stage_checks(s, stage_time);
   }
 
+  template <typename Law>
   void
-  NetworkProblem::post_stage_checks(const NetworkState &s, const double stage_time)
+  NetworkProblem<Law>::post_stage_checks(const NetworkState &s, const double stage_time)
   {
     const bool principle =
       method.degree == 0 && std::isfinite(bounds.first) && std::isfinite(bounds.second);
@@ -682,15 +530,16 @@ namespace granular_dg::network
     ranks->agree(found, error);
   }
 
+  template <typename Law>
   void
-  NetworkProblem::local_checks(const NetworkState &s, const double stage_time,
-                               const bool principle)
+  NetworkProblem<Law>::local_checks(const NetworkState &s, const double stage_time,
+                                    const bool principle)
   {
     for (const unsigned int v : ranks->vertices())
       if (!std::isfinite(s.vertices[v]))
         throw failure(stage_time, -1 - int(v), 0., s.vertices[v], "vertex value is not finite");
     // (non-finite values fail this test too, and are reported as such below)
-    const Scan edges = principle ? scan<true>(s.edges) : scan<false>(s.edges);
+    const internal::Scan edges = principle ? internal::scan<true>(s.edges) : internal::scan<false>(s.edges);
     if (principle && edges.finite)
       check_maximum_principle(s, stage_time, edges.lo, edges.hi);
     if (!edges.finite)
@@ -703,8 +552,9 @@ namespace granular_dg::network
                             s.edges[lines->index(local(k), c)], "state is not finite");
   }
 
+  template <typename Law>
   double
-  NetworkProblem::time_step(const double time)
+  NetworkProblem<Law>::time_step(const double time)
   {
     // the vertex value at each vertex end of this rank's edges
     face_values.resize(2 * lines->n_edges());
@@ -714,8 +564,9 @@ namespace granular_dg::network
     return method.time_step(ranks->max(speed_over_h), "t", time);
   }
 
+  template <typename Law>
   void
-  NetworkProblem::advance(const double time, const double dt)
+  NetworkProblem<Law>::advance(const double time, const double dt)
   {
     t = time;
     stage_inflow.clear();
@@ -740,16 +591,18 @@ namespace granular_dg::network
     t += dt;
   }
 
+  template <typename Law>
   double
-  NetworkProblem::balance_residual() const
+  NetworkProblem<Law>::balance_residual() const
   {
     double sums[2] = {local_mass(), inflow};
     ranks->sum(sums, 2);
     return (sums[0] - balance.mass0 - sums[1]) / balance.scale;
   }
 
+  template <typename Law>
   void
-  NetworkProblem::end_of_step(const double, const double, const unsigned long)
+  NetworkProblem<Law>::end_of_step(const double, const double, const unsigned long)
   {
     // one reduction for the step's diagnostics
     const auto local = local_sums();
@@ -762,32 +615,37 @@ namespace granular_dg::network
     tv_max               = std::max(tv_max, sums[2]);
   }
 
+  template <typename Law>
   void
-  NetworkProblem::store(const Slot slot)
+  NetworkProblem<Law>::store(const Slot slot)
   {
     (slot == Slot::last_good ? last_good : benchmark_start) = u;
   }
 
+  template <typename Law>
   void
-  NetworkProblem::restore(const Slot slot)
+  NetworkProblem<Law>::restore(const Slot slot)
   {
     u = slot == Slot::last_good ? last_good : benchmark_start;
   }
 
+  template <typename Law>
   double
-  NetworkProblem::mass() const
+  NetworkProblem<Law>::mass() const
   {
     return ranks->sum(local_mass());
   }
 
+  template <typename Law>
   double
-  NetworkProblem::local_mass() const
+  NetworkProblem<Law>::local_mass() const
   {
     return local_sums()[0];
   }
 
+  template <typename Law>
   std::array<double, 2>
-  NetworkProblem::local_sums() const
+  NetworkProblem<Law>::local_sums() const
   {
     // mass: the vertices' part, then each edge's (h times its sum of
     // means); TV: the jumps along each edge, then those at the vertices
@@ -798,7 +656,7 @@ namespace granular_dg::network
     for (const unsigned int k : ranks->edges())
       {
         const auto [sum, variation] =
-          edge_sums(u.edges.data() + lines->index(local(k), 0), lines->n_modes(), edge_cells[k]);
+          internal::edge_sums(u.edges.data() + lines->index(local(k), 0), lines->n_modes(), edge_cells[k]);
         m += edge_h[k] * sum;
         tv += variation;
       }
@@ -807,8 +665,9 @@ namespace granular_dg::network
     return {{m, tv}};
   }
 
+  template <typename Law>
   double
-  NetworkProblem::l1_norm() const
+  NetworkProblem<Law>::l1_norm() const
   {
     double m = 0;
     for (const unsigned int v : ranks->vertices())
@@ -822,8 +681,9 @@ namespace granular_dg::network
     return ranks->sum(m);
   }
 
+  template <typename Law>
   double
-  NetworkProblem::rh_residual() const
+  NetworkProblem<Law>::rh_residual() const
   {
     // every vertex's residual on the rank that reports it, then the
     // largest as on one rank
@@ -841,14 +701,16 @@ namespace granular_dg::network
     return largest;
   }
 
+  template <typename Law>
   double
-  NetworkProblem::total_variation() const
+  NetworkProblem<Law>::total_variation() const
   {
     return ranks->sum(local_sums()[1]);
   }
 
+  template <typename Law>
   NetworkErrors
-  NetworkProblem::errors(const ExactSolution &solution, const double time) const
+  NetworkProblem<Law>::errors(const ExactSolution &solution, const double time) const
   {
     NetworkErrors   e;
     const QGauss<1> quad(2 * method.degree + 8);
@@ -902,8 +764,9 @@ namespace granular_dg::network
     return e;
   }
 
+  template <typename Law>
   double
-  NetworkProblem::l1_distance(const NetworkProblem &other) const
+  NetworkProblem<Law>::l1_distance(const NetworkProblem &other) const
   {
     const QGauss<1> quad(method.degree + 2);
     double          sum = 0;
@@ -922,8 +785,9 @@ namespace granular_dg::network
     return ranks->sum(sum);
   }
 
+  template <typename Law>
   std::vector<std::vector<std::pair<double, double>>>
-  NetworkProblem::sample(const unsigned int points_per_cell) const
+  NetworkProblem<Law>::sample(const unsigned int points_per_cell) const
   {
     std::vector<std::vector<std::pair<double, double>>> out(net.edges.size());
     for (const unsigned int k : ranks->edges())
@@ -939,8 +803,9 @@ namespace granular_dg::network
     return out;
   }
 
+  template <typename Law>
   std::vector<std::vector<std::pair<double, double>>>
-  NetworkProblem::gathered_sample(const unsigned int points_per_cell) const
+  NetworkProblem<Law>::gathered_sample(const unsigned int points_per_cell) const
   {
     auto out = sample(points_per_cell);
     if (!ranks->parallel())
@@ -960,8 +825,9 @@ namespace granular_dg::network
     return out;
   }
 
+  template <typename Law>
   void
-  NetworkProblem::gather_edge_values(std::vector<std::vector<double>> &values) const
+  NetworkProblem<Law>::gather_edge_values(std::vector<std::vector<double>> &values) const
   {
     if (!ranks->parallel())
       return;
@@ -989,8 +855,9 @@ namespace granular_dg::network
       }
   }
 
+  template <typename Law>
   std::vector<std::string>
-  NetworkProblem::timeseries_names() const
+  NetworkProblem<Law>::timeseries_names() const
   {
     const bool               vertices = !junctions.empty();
     std::vector<std::string> header{"mass", "mass_balance_residual", "boundary_inflow"};
@@ -1010,8 +877,9 @@ namespace granular_dg::network
     return header;
   }
 
+  template <typename Law>
   std::string
-  NetworkProblem::timeseries_comment() const
+  NetworkProblem<Law>::timeseries_comment() const
   {
     const std::string blended =
       method.blending_max() > 0 ? "; blended_cells: cells of all edges with a blending factor > 0" : "";
@@ -1025,8 +893,9 @@ namespace granular_dg::network
            "; rh_residual = sum_in F - sum_out F at the vertex where it is largest" + blended;
   }
 
+  template <typename Law>
   std::vector<double>
-  NetworkProblem::timeseries_values(const double time)
+  NetworkProblem<Law>::timeseries_values(const double time)
   {
     const bool          vertices = !junctions.empty();
     std::vector<double> row{mass(), std::abs(balance_residual()), boundary_inflow()};
@@ -1052,10 +921,11 @@ namespace granular_dg::network
     return row;
   }
 
+  template <typename Law>
   template <typename Archive>
   void
-  NetworkProblem::state_io(Archive &ar, std::vector<double> &vertices,
-                           std::vector<std::vector<double>> &modes, double &total_inflow)
+  NetworkProblem<Law>::state_io(Archive &ar, std::vector<double> &vertices,
+                                std::vector<std::vector<double>> &modes, double &total_inflow)
   {
     // the graph's files first: the parameters name a graph file, not its
     // content, so a file changed since the checkpoint is refused here like
@@ -1094,8 +964,9 @@ namespace granular_dg::network
       ar.io(*x);
   }
 
+  template <typename Law>
   void
-  NetworkProblem::save(ByteWriter &w)
+  NetworkProblem<Law>::save(ByteWriter &w)
   {
     // every edge's modes in the order of the graph, on rank 0 (which writes
     // the checkpoint): the file does not depend on the number of ranks
@@ -1110,8 +981,9 @@ namespace granular_dg::network
       state_io(w, vertices, modes, total_inflow);
   }
 
+  template <typename Law>
   void
-  NetworkProblem::load(ByteReader &r)
+  NetworkProblem<Law>::load(ByteReader &r)
   {
     // every rank reads the whole state and keeps its edges
     std::vector<double>              vertices(u.vertices.size());
@@ -1124,8 +996,9 @@ namespace granular_dg::network
       std::copy(modes[k].begin(), modes[k].end(), u.edges.begin() + lines->index(local(k), 0));
   }
 
+  template <typename Law>
   void
-  NetworkProblem::finish(const double time, RunResult &result, const bool)
+  NetworkProblem<Law>::finish(const double time, RunResult &result, const bool)
   {
     if (result.status != "completed")
       return;

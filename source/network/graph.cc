@@ -1,8 +1,7 @@
 #include <deal.II/base/numbers.h>
 
 #include <granular_dg/base/errors.h>
-#include <granular_dg/equations/network/graph.h>
-#include <granular_dg/equations/network/junction.h>
+#include <granular_dg/network/graph.h>
 
 #include <algorithm>
 #include <cmath>
@@ -275,89 +274,4 @@ namespace granular_dg::network
       }
   }
 
-  Junction::Junction(const Graph &graph, const unsigned int v, const NumericalFlux type,
-                     const double width)
-    : Junction(graph, v, graph.vertex_ends(v), type, width)
-  {}
-
-  Junction::Junction(const Graph &graph, const unsigned int v, std::vector<EdgeEnd> ends,
-                     const NumericalFlux type, const double width)
-    : end_list(std::move(ends))
-    , type(type)
-    , dx0(width)
-    , label(graph.is_star() ? "vertex" : graph.vertices[v].label)
-  {
-    for (const auto &end : end_list)
-      {
-        flux.push_back(graph.edges[end.edge].flux);
-        incoming.push_back(end.incoming);
-      }
-  }
-
-  std::vector<double>
-  Junction::end_fluxes(const double *traces, const double u0) const
-  {
-    std::vector<double> F(end_list.size());
-    for (unsigned int i = 0; i < end_list.size(); ++i)
-      F[i] = end_flux(flux[i], incoming[i], traces[i], u0);
-    return F;
-  }
-
-  double
-  Junction::net_outflow(const double *traces, const double u0) const
-  {
-    return net_outflow(flux.data(), incoming.data(), traces, u0);
-  }
-
-  double
-  Junction::net_outflow(const FluxFunction *law, const unsigned char *in, const double *traces,
-                        const double u0) const
-  {
-    // end_fluxes() summed without a vector (a stage calls this once per vertex)
-    double sum = 0;
-    for (unsigned int i = 0; i < end_list.size(); ++i)
-      {
-        const double F = end_flux(law[i], in[i], traces[i], u0);
-        sum += in[i] ? -F : F;
-      }
-    return sum;
-  }
-
-  double
-  Junction::balance(const double *traces, const double t) const
-  {
-    // net_outflow is nondecreasing in u0: bracket a sign change, then bisect
-    const double *end = traces + end_list.size();
-    double        lo  = end_list.empty() ? 0. : *std::min_element(traces, end);
-    double        hi  = end_list.empty() ? 0. : *std::max_element(traces, end);
-    double width = std::max(1., hi - lo);
-    lo -= 1e-3 * width;
-    hi += 1e-3 * width;
-    for (unsigned int i = 0; i < 60 && net_outflow(traces, lo) > 0; ++i, width *= 2)
-      lo -= width;
-    for (unsigned int i = 0; i < 60 && net_outflow(traces, hi) < 0; ++i, width *= 2)
-      hi += width;
-    if (!(net_outflow(traces, lo) <= 0 && net_outflow(traces, hi) >= 0))
-      {
-        std::ostringstream s;
-        s << "no " << label << " state balances the edge fluxes at t = " << t
-          << " (sum_out F - sum_in F stays "
-          << (net_outflow(traces, hi) < 0 ? "negative" : "positive")
-          << "): the outgoing edges cannot carry the incoming flux; use a vertex "
-             "with volume (Network/vertex width factor > 0)";
-        throw RunError(s.str());
-      }
-    for (unsigned int i = 0; i < 200; ++i)
-      {
-        const double mid = 0.5 * (lo + hi);
-        if (mid <= lo || mid >= hi)
-          break;
-        const double r = net_outflow(traces, mid);
-        if (r == 0)
-          return mid;
-        (r < 0 ? lo : hi) = mid;
-      }
-    // the end with the smaller residual
-    return std::abs(net_outflow(traces, lo)) <= std::abs(net_outflow(traces, hi)) ? lo : hi;
-  }
 } // namespace granular_dg::network

@@ -9,12 +9,13 @@
 #include <granular_dg/dg/limiter.h>
 #include <granular_dg/dg/parameters.h>
 #include <granular_dg/dg/time_integrator.h>
-#include <granular_dg/equations/network/edge_lines.h>
-#include <granular_dg/equations/network/edge_partition.h>
-#include <granular_dg/equations/network/exact_solution.h>
-#include <granular_dg/equations/network/graph.h>
-#include <granular_dg/equations/network/junction.h>
-#include <granular_dg/equations/network/system.h>
+#include <granular_dg/network/edge_lines.h>
+#include <granular_dg/network/edge_partition.h>
+#include <granular_dg/network/exact_solution.h>
+#include <granular_dg/network/graph.h>
+#include <granular_dg/network/junction.h>
+
+#include <array>
 
 #include <algorithm>
 #include <cmath>
@@ -53,11 +54,10 @@ namespace granular_dg::network
   };
 
   /// What the network adds to the method of every scene
-  /// (dg::DiscretizationParameters): its numerical flux among the scalar
-  /// ones, the mesh of the edges, the integrator and what a snapshot writes.
+  /// (dg::DiscretizationParameters): the mesh of the edges, the integrator
+  /// and what a snapshot writes. (The numerical flux is the edges' Law's.)
   struct NetworkOptions
   {
-    NumericalFlux flux = NumericalFlux::upwind;
     /// 2^l at grid level l: an edge of length L gets round(L * this) cells
     double        cells_per_unit_length = 256;
     Integrator    integrator            = Integrator::automatic;
@@ -104,6 +104,27 @@ namespace granular_dg::network
     std::vector<double> l1_per_edge;
   };
 
+  /// What NetworkProblem's members use that does not depend on the law
+  /// (source/network/network.cc).
+  namespace internal
+  {
+    /// Whether every entry of v is finite and, with `range`, their
+    /// [min, max]: one SIMD pass
+    struct Scan
+    {
+      bool   finite;
+      double lo, hi;
+    };
+    template <bool range>
+    Scan
+    scan(const std::vector<double> &v);
+
+    /// the sum of the n cell means of an edge (at mean[c * stride]) and
+    /// their total variation
+    std::array<double, 2>
+    edge_sums(const double *mean, unsigned int stride, unsigned int n);
+  } // namespace internal
+
   /**
    * The network as one discretisation and the Evolution the TimeLoop drives:
    * the cells of all edges of a rank in one line engine (EdgeLines), whose
@@ -111,6 +132,14 @@ namespace granular_dg::network
    * Junction couples them. apply_stage() is a Runge-Kutta stage of the whole network
    * (edges and vertex), so dg::SSPRK3<NetworkState> and
    * dg::ForwardEuler<NetworkState> advance it.
+   *
+   * Law is the physics of an edge, one object per edge: copyable, with
+   * value(u), derivative(u) = f'(u) and
+   * the numerical flux flux(u_l, u_r), each a template in the number type
+   * (double and VectorizedArray<double>), describe() for output headers,
+   * flux_name() for summary.json and a static `name`. The members are
+   * defined in network.templates.h and output.templates.h, which the scene
+   * instantiates for its Law.
    *
    * On several MPI ranks each rank discretises its own edges (EdgePartition)
    * and updates the vertices they meet; the traces at vertices shared with
@@ -120,13 +149,16 @@ namespace granular_dg::network
    * and checkpoints are gathered on rank 0 and do not depend on the number
    * of ranks.
    */
+  template <typename Law>
   class NetworkProblem : public Evolution
   {
   public:
-    /// The vertices' widths and initial values are the graph's.
-    NetworkProblem(const Graph &graph, const dg::DiscretizationParameters &method,
-                   const NetworkOptions &options, std::vector<EdgeData> data,
-                   const ExactSolution *exact = nullptr, const std::string &scene = "network");
+    /// The vertices' widths and initial values are the graph's; laws and
+    /// data: one per edge.
+    NetworkProblem(const Graph &graph, std::vector<Law> laws,
+                   const dg::DiscretizationParameters &method, const NetworkOptions &options,
+                   std::vector<EdgeData> data, const ExactSolution *exact = nullptr,
+                   const std::string &scene = "network");
     ~NetworkProblem() override;
 
     // ------------------------------------------------------------ Evolution
@@ -197,7 +229,7 @@ namespace granular_dg::network
     unsigned int  n_stages() const;
     double        min_cell_size() const { return h_min; }
     const Graph  &graph() const { return net; }
-    const Junction &junction(unsigned int v = 0) const { return junctions[v]; }
+    const Junction<Law> &junction(unsigned int v = 0) const { return junctions[v]; }
     const EdgePartition &partition() const { return *ranks; }
     /// u_0 of vertex v on a rank that owns one of its edges (every vertex on
     /// one rank); vertex_values() has all of them on every rank.
@@ -333,6 +365,7 @@ namespace granular_dg::network
              double &total_inflow);
 
     Graph                       net;
+    std::vector<Law>            laws;
     dg::DiscretizationParameters method;
     NetworkOptions              options;
     std::vector<EdgeData> data;
@@ -344,7 +377,7 @@ namespace granular_dg::network
     std::vector<double>                              edge_h;
     /// the cells of this rank's edges; the local number of every edge (-1:
     /// on another rank)
-    std::unique_ptr<EdgeLines>                       lines;
+    std::unique_ptr<EdgeLines<Law>>                  lines;
     std::vector<int>                                 local_edge;
     /// the traces exchanged at the vertices shared by several ranks
     mutable std::vector<double>                      exchanged;
@@ -369,7 +402,7 @@ namespace granular_dg::network
       std::vector<std::size_t>   first;
       std::vector<long>          source;
       std::vector<unsigned char> at_end;
-      std::vector<FluxFunction>  law;
+      std::vector<Law>           law;
     } vertex_ends;
     /// the ends of this rank's vertices on this rank's edges, in the order
     /// of vertex_ends (one flat pass for the total variation): the vertex
@@ -382,7 +415,7 @@ namespace granular_dg::network
     std::vector<OwnedEnd> owned_ends;
     /// time_step(): the vertex value at each face of vertex_faces
     std::vector<double> face_values;
-    std::vector<Junction>                            junctions;
+    std::vector<Junction<Law>>                       junctions;
     /// the value the edges see at each vertex in the current stage
     mutable std::vector<double>                      vertex_u0;
     /// the time of the far-end data in the edges' outer states
@@ -404,8 +437,9 @@ namespace granular_dg::network
 
   /// A single run with output (solution.pvd with the network drawn in the
   /// plane, profile-NNNN-edge-K.csv, timeseries.csv, summary.json).
+  template <typename Law>
   RunResult
-  run_network(const Graph &graph, const std::vector<EdgeData> &data,
+  run_network(const Graph &graph, const std::vector<Law> &laws, const std::vector<EdgeData> &data,
               const dg::DiscretizationParameters &method, const NetworkOptions &options,
               const ExactSolution *exact,
               const RunParameters &params, bool write_files,
@@ -416,8 +450,10 @@ namespace granular_dg::network
   /// vertex (and per edge), its EOC, steps, CPU time, in convergence.csv (and
   /// a Table-1-like table on stdout); the EOC of the two finest meshes per
   /// degree in convergence-rates.csv.
+  template <typename Law>
   void
-  run_network_convergence(const Graph &graph, const std::vector<EdgeData> &data,
+  run_network_convergence(const Graph &graph, const std::vector<Law> &laws,
+                          const std::vector<EdgeData> &data,
                           const dg::DiscretizationParameters &method,
                           const NetworkOptions &options, const ExactSolution &exact,
                           const RunParameters &params);

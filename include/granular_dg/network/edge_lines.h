@@ -6,7 +6,6 @@
 #include <granular_dg/dg/limiter.h>
 #include <granular_dg/dg/subcell_blending.h>
 #include <granular_dg/dg/time_integrator.h>
-#include <granular_dg/equations/network/system.h>
 
 #include <array>
 #include <cstddef>
@@ -26,7 +25,6 @@ namespace granular_dg::network
   struct EdgeMethod
   {
     unsigned int         degree    = 0;
-    NumericalFlux        flux      = NumericalFlux::upwind;
     dg::LimiterType      limiter   = dg::LimiterType::none;
     double               tvb_M     = 0.;
     dg::TroubleIndicator indicator = dg::TroubleIndicator::everywhere;
@@ -54,12 +52,15 @@ namespace granular_dg::network
    * the flux through the edge's end. The two end faces of an edge take their
    * outer state from outer_state(): the vertex value, far-end data or
    * (outflow) the inner trace.
+   *
+   * Law: the physics of an edge (NetworkProblem).
    */
+  template <typename Law>
   class EdgeLines
   {
   public:
     /// flux[e], n_cells[e], h[e]: of the local edges e = 0, 1, ...
-    EdgeLines(const EdgeMethod &method, std::vector<FluxFunction> flux,
+    EdgeLines(const EdgeMethod &method, std::vector<Law> flux,
               const std::vector<unsigned int> &n_cells, const std::vector<double> &h);
 
     unsigned int n_edges() const { return cells.size(); }
@@ -74,7 +75,6 @@ namespace granular_dg::network
     {
       return (first[e] + c) * modes;
     }
-    const FluxFunction &flux(const unsigned int e) const { return laws[e]; }
 
     /// The kind of the end (side 0: x = 0, side 1: x = L) of edge e, and the
     /// outer state at it (for vertex and dirichlet ends, set before every
@@ -115,7 +115,10 @@ namespace granular_dg::network
 
 
   private:
-    struct Law;
+    using VA = VectorizedArray<double>;
+    /// cells per SIMD batch (the native width)
+    static constexpr unsigned int W = VA::size();
+
     template <unsigned int nm, typename Out>
     void rate_edge(const double *src, unsigned int e, const Out &out) const;
     template <unsigned int nm, typename Out>
@@ -143,7 +146,7 @@ namespace granular_dg::network
     double outer_of(unsigned int e, unsigned int side, double inner) const;
 
     EdgeMethod                method;
-    std::vector<FluxFunction> laws;
+    std::vector<Law>          laws;
     std::vector<unsigned int> cells;
     /// first[e]: the cells before edge e (first[n_edges]: all)
     std::vector<std::size_t>  first;

@@ -1,0 +1,199 @@
+/**
+ * The parts of the network engine that do not depend on the physics of an
+ * edge: the initial projection's moments, the cells per edge, the snapshot
+ * size, and the scans NetworkProblem<Law> makes of its state.
+ */
+
+#include <deal.II/base/quadrature_lib.h>
+#include <deal.II/base/vectorization.h>
+
+#include <granular_dg/base/vectorized_math.h>
+#include <granular_dg/network/network.h>
+
+#include <algorithm>
+#include <cmath>
+
+namespace granular_dg::network
+{
+  void
+  NetworkState::reinit(const NetworkState &other)
+  {
+    edges.assign(other.edges.size(), 0.);
+    vertices.assign(other.vertices.size(), 0.);
+  }
+
+  namespace internal
+  {
+    /// One SIMD pass over v: whether every entry is finite (x - x is 0 for a
+    /// finite x and NaN otherwise, and a NaN stays in a sum), and with
+    /// `range` [min, max] of the entries when they are (min and max are
+    /// exact in any order)
+    template <bool range>
+    Scan
+    scan(const std::vector<double> &v)
+    {
+      using VA       = VectorizedArray<double>;
+      VA          lo = INFINITY, hi = -INFINITY, sum = 0.;
+      std::size_t i  = 0;
+      for (; i + VA::size() <= v.size(); i += VA::size())
+        {
+          VA x;
+          x.load(v.data() + i);
+          sum += x - x;
+          if constexpr (range)
+            {
+              lo = std::min(lo, x);
+              hi = std::max(hi, x);
+            }
+        }
+      Scan result{granular_dg::all_finite(sum), INFINITY, -INFINITY};
+      for (unsigned int l = 0; l < VA::size(); ++l)
+        {
+          result.lo = std::min(result.lo, lo[l]);
+          result.hi = std::max(result.hi, hi[l]);
+        }
+      for (; i < v.size(); ++i)
+        {
+          result.finite = result.finite && std::isfinite(v[i]);
+          result.lo     = std::min(result.lo, v[i]);
+          result.hi     = std::max(result.hi, v[i]);
+        }
+      return result;
+    }
+
+    namespace
+    {
+    /// x[0] + ... + x[7], added pairwise
+    double
+    pairwise_sum(const double (&x)[8])
+    {
+      return ((x[0] + x[1]) + (x[2] + x[3])) + ((x[4] + x[5]) + (x[6] + x[7]));
+    }
+
+#if DEAL_II_VECTORIZATION_WIDTH_IN_BITS >= 512 && defined(__AVX512F__)
+    /// edge_sums() below at stride 1 (degree 0), the partial sums in the
+    /// lanes of one register each: the same additions in the same order, so
+    /// the same result to the bit. Masked loads end the edge.
+    std::array<double, 2>
+    contiguous_edge_sums(const double *mean, const unsigned int n)
+    {
+      // the first k of the 8 lanes
+      const auto first = [](const unsigned int k) {
+        return __mmask8(k >= 8 ? 0xff : (1u << k) - 1);
+      };
+      const __m512d sign = _mm512_set1_pd(-0.);
+      __m512d       sum = _mm512_setzero_pd(), tv = _mm512_setzero_pd();
+      for (unsigned int c = 0; c < n; c += 8)
+        {
+          // lane l: cell c + l and the jump from it to c + l + 1
+          const __mmask8 cells = first(n - c), jumps = first(n - c - 1);
+          const __m512d  x     = _mm512_maskz_loadu_pd(cells, mean + c);
+          const __m512d  next  = _mm512_maskz_loadu_pd(jumps, mean + c + 1);
+          sum = _mm512_mask_add_pd(sum, cells, sum, x);
+          tv  = _mm512_mask_add_pd(tv, jumps, tv, _mm512_andnot_pd(sign, _mm512_sub_pd(next, x)));
+        }
+      double s[8], t[8];
+      _mm512_storeu_pd(s, sum);
+      _mm512_storeu_pd(t, tv);
+      return {{pairwise_sum(s), pairwise_sum(t)}};
+    }
+#endif
+    } // namespace
+
+    /// The sum of the n cell means of an edge (at mean[c * stride]) and their
+    /// total variation, each over 8 interleaved partial sums (cell c in sum
+    /// c % 8: no long chain of dependent additions) added pairwise. Written
+    /// in blocks of 8 so that the partial sums stay in registers.
+    std::array<double, 2>
+    edge_sums(const double *mean, const unsigned int stride, const unsigned int n)
+    {
+#if DEAL_II_VECTORIZATION_WIDTH_IN_BITS >= 512 && defined(__AVX512F__)
+      if (stride == 1)
+        return contiguous_edge_sums(mean, n);
+#endif
+      constexpr unsigned int L      = 8;
+      double                 sum[L] = {}, tv[L] = {};
+      const auto             add    = [&](const unsigned int c, const unsigned int l) {
+        sum[l] += mean[c * stride];
+        if (c + 1 < n)
+          tv[l] += std::abs(mean[(c + 1) * stride] - mean[c * stride]);
+      };
+      unsigned int c = 0;
+      for (; c + L <= n; c += L)
+        for (unsigned int l = 0; l < L; ++l)
+          add(c + l, l);
+      for (unsigned int l = 0; l < L; ++l)
+        if (c + l < n)
+          add(c + l, l);
+      return {{pairwise_sum(sum), pairwise_sum(tv)}};
+    }
+    template Scan scan<false>(const std::vector<double> &);
+    template Scan scan<true>(const std::vector<double> &);
+  } // namespace internal
+
+  void
+  add_cell_moments(const Function<1> &g, const std::vector<Polynomials::Legendre> &legendre,
+                   const QGauss<1> &quad, const double x0, const double h, const double a,
+                   const double b, std::vector<double> &result, const unsigned int depth)
+  {
+    const unsigned int n_modes = legendre.size();
+    auto moments = [&](const double lo, const double hi) {
+      std::vector<double> m(n_modes, 0.);
+      // the points in the cell's coordinate, from lo rather than from x:
+      // (x - x0) / h would carry the rounding of x magnified by x / h, and
+      // the two levels would then never agree in cells far from x = 0
+      // (2.5 10^6 evaluations of g per cell instead of 15 at 20000 cells per
+      // unit length, tests/network/cell_moments)
+      const double xi_lo = (lo - x0) / h, xi_width = (hi - lo) / h;
+      for (unsigned int q = 0; q < quad.size(); ++q)
+        {
+          const double x  = lo + (hi - lo) * quad.point(q)[0];
+          const double w  = (hi - lo) * quad.weight(q);
+          const double v  = g.value(Point<1>(x));
+          const double xi = xi_lo + xi_width * quad.point(q)[0];
+          for (unsigned int k = 0; k < n_modes; ++k)
+            m[k] += w * v * legendre[k].value(xi);
+        }
+      return m;
+    };
+    const double mid   = 0.5 * (a + b);
+    const auto   whole = moments(a, b);
+    auto         halves = moments(a, mid);
+    const auto   right  = moments(mid, b);
+    double       diff = 0, size = 0;
+    for (unsigned int k = 0; k < n_modes; ++k)
+      {
+        halves[k] += right[k];
+        diff = std::max(diff, std::abs(halves[k] - whole[k]));
+        size = std::max(size, std::abs(halves[k]));
+      }
+    if (diff <= 1e-15 * std::max(b - a, size) || depth >= 55)
+      {
+        for (unsigned int k = 0; k < n_modes; ++k)
+          result[k] += halves[k];
+        return;
+      }
+    add_cell_moments(g, legendre, quad, x0, h, a, mid, result, depth + 1);
+    add_cell_moments(g, legendre, quad, x0, h, mid, b, result, depth + 1);
+  }
+
+  std::vector<unsigned int>
+  edge_cells(const Graph &graph, const double cells_per_unit_length)
+  {
+    std::vector<unsigned int> n;
+    for (const Edge &e : graph.edges)
+      n.push_back(
+        std::max(1u, static_cast<unsigned int>(std::lround(e.length * cells_per_unit_length))));
+    return n;
+  }
+
+  double
+  snapshot_bytes(const unsigned long n_cells, const dg::DiscretizationParameters &method,
+                 const NetworkOptions &options)
+  {
+    const unsigned int points = method.profile_points > 0 ? method.profile_points :
+                                                            std::max(2u, method.degree + 1);
+    return n_cells * points * (options.write_vtu ? 60. : 0.) + n_cells * points * 40.;
+  }
+
+} // namespace granular_dg::network
