@@ -1,9 +1,18 @@
 # network tests (included by tests/CMakeLists.txt)
 
 # Physics and vertex: flux consistency and monotonicity, Godunov and
-# Engquist-Osher against brute force, face-flux orientation, the stationary
-# c_0 of Examples 7.1, 7.2, 7.4 (deviations printed, compared at 1e-12 abs).
+# Engquist-Osher against brute force, the law in SIMD lanes against its
+# scalar values, the stationary c_0 of Examples 7.1, 7.2, 7.4 (deviations
+# printed, compared at 1e-12 abs).
 granular_dg_unit_test(network/network_physics NUMDIFF -a 1e-12 -r 0)
+
+# The engine is a template on the physics of an edge: a law of the test's
+# own (linear advection, upwind) runs it and gives EdgeLaw's state and time
+# steps bit for bit (differences printed, compared exactly).
+granular_dg_unit_test(network/custom_law NUMDIFF -a 0 -r 0)
+# (both laws in one unit at -O1: the check needs equal code, not fast code,
+# and the unit compiles the whole engine)
+target_compile_options(test_custom_law PRIVATE -O1)
 
 # The initial projection's cell moments (add_cell_moments): smooth data in
 # one level of adaptive Gauss integration in every cell of a fine mesh (the
