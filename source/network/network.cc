@@ -22,6 +22,45 @@ namespace granular_dg::network
     vertices.assign(other.vertices.size(), 0.);
   }
 
+  namespace
+  {
+    /// x[0] + ... + x[7], added pairwise
+    double
+    pairwise_sum(const double (&x)[8])
+    {
+      return ((x[0] + x[1]) + (x[2] + x[3])) + ((x[4] + x[5]) + (x[6] + x[7]));
+    }
+
+#if DEAL_II_VECTORIZATION_WIDTH_IN_BITS >= 512 && defined(__AVX512F__)
+    /// edge_sums() below at stride 1 (degree 0), the partial sums in the
+    /// lanes of one register each: the same additions in the same order, so
+    /// the same result to the bit. Masked loads end the edge.
+    std::array<double, 2>
+    contiguous_edge_sums(const double *mean, const unsigned int n)
+    {
+      // the first k of the 8 lanes
+      const auto first = [](const unsigned int k) {
+        return __mmask8(k >= 8 ? 0xff : (1u << k) - 1);
+      };
+      const __m512d sign = _mm512_set1_pd(-0.);
+      __m512d       sum = _mm512_setzero_pd(), tv = _mm512_setzero_pd();
+      for (unsigned int c = 0; c < n; c += 8)
+        {
+          // lane l: cell c + l and the jump from it to c + l + 1
+          const __mmask8 cells = first(n - c), jumps = first(n - c - 1);
+          const __m512d  x     = _mm512_maskz_loadu_pd(cells, mean + c);
+          const __m512d  next  = _mm512_maskz_loadu_pd(jumps, mean + c + 1);
+          sum = _mm512_mask_add_pd(sum, cells, sum, x);
+          tv  = _mm512_mask_add_pd(tv, jumps, tv, _mm512_andnot_pd(sign, _mm512_sub_pd(next, x)));
+        }
+      double s[8], t[8];
+      _mm512_storeu_pd(s, sum);
+      _mm512_storeu_pd(t, tv);
+      return {{pairwise_sum(s), pairwise_sum(t)}};
+    }
+#endif
+  } // namespace
+
   namespace internal
   {
     /// One SIMD pass over v: whether every entry is finite (x - x is 0 for a
@@ -61,45 +100,6 @@ namespace granular_dg::network
       return result;
     }
 
-    namespace
-    {
-    /// x[0] + ... + x[7], added pairwise
-    double
-    pairwise_sum(const double (&x)[8])
-    {
-      return ((x[0] + x[1]) + (x[2] + x[3])) + ((x[4] + x[5]) + (x[6] + x[7]));
-    }
-
-#if DEAL_II_VECTORIZATION_WIDTH_IN_BITS >= 512 && defined(__AVX512F__)
-    /// edge_sums() below at stride 1 (degree 0), the partial sums in the
-    /// lanes of one register each: the same additions in the same order, so
-    /// the same result to the bit. Masked loads end the edge.
-    std::array<double, 2>
-    contiguous_edge_sums(const double *mean, const unsigned int n)
-    {
-      // the first k of the 8 lanes
-      const auto first = [](const unsigned int k) {
-        return __mmask8(k >= 8 ? 0xff : (1u << k) - 1);
-      };
-      const __m512d sign = _mm512_set1_pd(-0.);
-      __m512d       sum = _mm512_setzero_pd(), tv = _mm512_setzero_pd();
-      for (unsigned int c = 0; c < n; c += 8)
-        {
-          // lane l: cell c + l and the jump from it to c + l + 1
-          const __mmask8 cells = first(n - c), jumps = first(n - c - 1);
-          const __m512d  x     = _mm512_maskz_loadu_pd(cells, mean + c);
-          const __m512d  next  = _mm512_maskz_loadu_pd(jumps, mean + c + 1);
-          sum = _mm512_mask_add_pd(sum, cells, sum, x);
-          tv  = _mm512_mask_add_pd(tv, jumps, tv, _mm512_andnot_pd(sign, _mm512_sub_pd(next, x)));
-        }
-      double s[8], t[8];
-      _mm512_storeu_pd(s, sum);
-      _mm512_storeu_pd(t, tv);
-      return {{pairwise_sum(s), pairwise_sum(t)}};
-    }
-#endif
-    } // namespace
-
     /// The sum of the n cell means of an edge (at mean[c * stride]) and their
     /// total variation, each over 8 interleaved partial sums (cell c in sum
     /// c % 8: no long chain of dependent additions) added pairwise. Written
@@ -127,6 +127,7 @@ namespace granular_dg::network
           add(c + l, l);
       return {{pairwise_sum(sum), pairwise_sum(tv)}};
     }
+
     template Scan scan<false>(const std::vector<double> &);
     template Scan scan<true>(const std::vector<double> &);
   } // namespace internal

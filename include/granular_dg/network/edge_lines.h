@@ -39,7 +39,7 @@ namespace granular_dg::network
    * coefficients of every cell of every edge lie in one array, edge after
    * edge, cell after cell from x = 0 to x = L, mode after mode (the layout of
    * dg::LineOperator on one line). An edge is two numbers of geometry (its
-   * cell count and cell size) and its flux law; there is no mesh object.
+   * cell count and cell size) and its Law; there is no mesh object.
    *
    * The discretisation is dg::LineOperator's (p + 2 Gauss points, the
    * physics' numerical flux at faces, a fused Runge-Kutta stage update),
