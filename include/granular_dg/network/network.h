@@ -439,7 +439,7 @@ namespace granular_dg::network
   /// plane, profile-NNNN-edge-K.csv, timeseries.csv, summary.json).
   template <typename Law>
   RunResult
-  run_network(const Graph &graph, const std::vector<Law> &laws, const std::vector<EdgeData> &data,
+  run_network(const Graph &graph, std::vector<Law> laws, const std::vector<EdgeData> &data,
               const dg::DiscretizationParameters &method, const NetworkOptions &options,
               const ExactSolution *exact,
               const RunParameters &params, bool write_files,

@@ -221,12 +221,12 @@ namespace granular_dg::network
 
   template <typename Law>
   RunResult
-  run_network(const Graph &graph, const std::vector<Law> &laws, const std::vector<EdgeData> &data,
+  run_network(const Graph &graph, std::vector<Law> laws, const std::vector<EdgeData> &data,
               const dg::DiscretizationParameters &method, const NetworkOptions &options,
               const ExactSolution *exact, const RunParameters &params, const bool write_files,
               const std::string &scene)
   {
-    NetworkProblem<Law> p(graph, laws, method, options, data, exact, scene);
+    NetworkProblem<Law> p(graph, std::move(laws), method, options, data, exact, scene);
     TimeLoop       loop(p, params, write_files);
     return loop.run();
   }

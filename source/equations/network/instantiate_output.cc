@@ -9,7 +9,7 @@ namespace granular_dg::network
   NetworkProblem<EdgeLaw>::write_snapshot(const std::string &, unsigned int, double);
 
   template RunResult
-  run_network(const Graph &, const std::vector<EdgeLaw> &, const std::vector<EdgeData> &,
+  run_network(const Graph &, std::vector<EdgeLaw>, const std::vector<EdgeData> &,
               const dg::DiscretizationParameters &, const NetworkOptions &, const ExactSolution *,
               const RunParameters &, bool, const std::string &);
 
