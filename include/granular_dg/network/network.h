@@ -15,9 +15,8 @@
 #include <granular_dg/network/graph.h>
 #include <granular_dg/network/junction.h>
 
-#include <array>
-
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <memory>
 #include <optional>
@@ -134,10 +133,10 @@ namespace granular_dg::network
    * dg::ForwardEuler<NetworkState> advance it.
    *
    * Law is the physics of an edge, one object per edge: copyable, with
-   * value(u), derivative(u) = f'(u) and
-   * the numerical flux flux(u_l, u_r), each a template in the number type
-   * (double and VectorizedArray<double>), describe() for output headers,
-   * flux_name() for summary.json and a static `name`. The members are
+   * value(u), derivative(u) = f'(u) and the numerical flux flux(u_l, u_r),
+   * each a template in the number type (double and VectorizedArray<double>),
+   * describe() for output headers, flux_name() for summary.json and a static
+   * `name` (tests/network/custom_law.cc has a minimal one). The members are
    * defined in network.templates.h and output.templates.h, which the scene
    * instantiates for its Law.
    *

@@ -18,8 +18,8 @@
 #include <granular_dg/dg/scene_entry.h>
 #include <granular_dg/equations/network/examples.h>
 #include <granular_dg/equations/network/graph_input.h>
-#include <granular_dg/network/network.h>
 #include <granular_dg/equations/network/system.h>
+#include <granular_dg/network/network.h>
 
 #include <algorithm>
 #include <cmath>
@@ -128,8 +128,8 @@ namespace granular_dg::network
           const Edge         &e    = graph.edges[k];
           const FluxFunction &f    = c.input.flux[k];
           const auto         &want = ex.edges[k];
-          const std::string &sec  = c.input.where[k];
-          const std::string  why  = ", as " + ex.name + " expects (or set Network/exact solution = none)";
+          const std::string  &sec  = c.input.where[k];
+          const std::string   why  = ", as " + ex.name + " expects (or set Network/exact solution = none)";
           require(e.from == want.from && e.to == want.to, sec + "direction",
                   graph.describe(k), graph.describe_ends(want.from, want.to) + why);
           require(f.law == want.flux.law, sec + "flux", flux_law_names.name(f.law),

@@ -85,8 +85,8 @@ namespace granular_dg::network
     /// Vertex N section sets something
     void
     vertices_from_sections(unsigned int n_vertices);
-    /// e with its flux law f and its data (numbers become constants, else expressions; the
-    /// names are the data's parameters in messages)
+    /// e with its flux law f and its data (numbers become constants, else
+    /// expressions; the names are the data's parameters in messages)
     void
     add_edge(Edge e, const FluxFunction &f, const std::string &where, const std::string &initial,
              const std::string &far_end_data, const std::string &initial_name,
