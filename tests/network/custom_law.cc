@@ -7,8 +7,7 @@
 // bit for bit, that of the scene's EdgeLaw (linear flux, Engquist-Osher =
 // upwind for a > 0) on the same network, and so must the time steps.
 
-#include <deal.II/base/function_parser.h>
-
+#include <granular_dg/base/parameters.h>
 #include <granular_dg/equations/network/system.h>
 #include <granular_dg/network/edge_lines.templates.h>
 #include <granular_dg/network/network.templates.h>
@@ -62,14 +61,6 @@ namespace
       return "upwind";
     }
   };
-
-  std::shared_ptr<Function<1>>
-  expression(const std::string &text, const bool time = false)
-  {
-    auto f = std::make_shared<FunctionParser<1>>(1);
-    f->initialize(time ? "x,t" : "x", text, {}, time);
-    return f;
-  }
 } // namespace
 
 int
@@ -87,8 +78,10 @@ main()
       g.edges.push_back(e);
     }
   std::vector<EdgeData> data;
-  for (const std::string u0 : {"1 + 0.5*sin(6.283185307179586*x)", "if(x < 0.5, 1, 0.2)", "0.3", "x*x"})
-    data.push_back({expression(u0), expression("1 + 0.2*sin(3*t)", true), {}});
+  for (const std::string u0 : {"1 + 0.5*sin(2*pi*x)", "if(x < 0.5, 1, 0.2)", "0.3", "x*x"})
+    data.push_back({make_function<1>({u0}, {"initial data"}, false),
+                    make_function<1>({"1 + 0.2*sin(3*t)"}, {"far-end data"}, true),
+                    {}});
 
   dg::DiscretizationParameters method;
   method.degree = 2;

@@ -12,8 +12,7 @@
 //    properties fail (the paper's dx_0 = N dx/2 makes (4.7) sufficient).
 // The .output holds the outcomes (yes/no) and the ratios (4 digits).
 
-#include <deal.II/base/function_parser.h>
-
+#include <granular_dg/base/parameters.h>
 #include <granular_dg/equations/network/system.h>
 #include <granular_dg/network/network.h>
 
@@ -26,14 +25,6 @@ using namespace granular_dg::network;
 
 namespace
 {
-  std::shared_ptr<Function<1>>
-  expression(const std::string &text, const bool time = false)
-  {
-    auto f = std::make_shared<FunctionParser<1>>(1);
-    f->initialize(time ? "x,t" : "x", text, {}, time);
-    return f;
-  }
-
   void
   compare(const double width_factor)
   {
@@ -57,8 +48,10 @@ namespace
     std::vector<EdgeData> data_u, data_v;
     for (unsigned int k = 0; k < 5; ++k)
       {
-        data_u.push_back({expression(du[k]), expression(far[k], true), {}});
-        data_v.push_back({expression(dv[k]), expression(far[k], true), {}});
+        data_u.push_back({make_function<1>({du[k]}, {"initial data"}, false),
+                          make_function<1>({far[k]}, {"far-end data"}, true), {}});
+        data_v.push_back({make_function<1>({dv[k]}, {"initial data"}, false),
+                          make_function<1>({far[k]}, {"far-end data"}, true), {}});
       }
     // the paper's scheme: degree 0, upwind flux, CFL 0.5
     dg::DiscretizationParameters method;
