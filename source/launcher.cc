@@ -54,8 +54,8 @@ namespace
    * one run ending removes it while another creates it, and the other's
    * MPI_Init fails (8 of 1200 bare starts, four at a time). So no session
    * directory is made at all (0 of 4000): one rank needs only the self
-   * transport, and MPI-IO's shared file pointers (which nothing here uses)
-   * stay out of the "sm" component, the one that keeps files there.
+   * transport, and MPI-IO's "sm" component, the one that keeps files there,
+   * is off for every run (keep_mpi_io_off_named_semaphores()).
    * A setting the user made wins; other MPI implementations ignore the names.
    */
   void
@@ -66,9 +66,28 @@ namespace
     for (const auto &[name, value] : {std::pair{"OMPI_MCA_ess_singleton_isolated", "1"},
                                       std::pair{"OMPI_MCA_pml", "ob1"},
                                       std::pair{"OMPI_MCA_btl", "self"},
-                                      std::pair{"OMPI_MCA_sharedfp", "^sm"},
                                       std::pair{"OMPI_MCA_orte_create_session_dirs", "0"}})
       ::setenv(name, value, /*overwrite=*/0);
+  }
+
+  /**
+   * MPI-IO (the checkpoints, HDF5 output) never uses shared file pointers,
+   * yet Open MPI 4.1's MPI-IO (OMPIO) sets one up at every MPI_File_open, on
+   * one node with its "sm" component: rank 0 takes and releases a POSIX
+   * semaphore named after the file's base name alone
+   * (/dev/shm/sem.OMPIO_.step-0000000040.ckpt.tmp). A run killed while it
+   * holds it (a batch system's time limit, kill -9) leaves it taken, and from
+   * then on every MPI run on that machine that writes a file of that name,
+   * the checkpoint of the same step in any directory, waits in MPI_File_open
+   * forever, until someone deletes the semaphore by hand. Without "sm" Open
+   * MPI takes its file-lock component, whose locks end with the process.
+   * Every run, with or without mpirun; a setting the user made wins.
+   * (tests/checkpoint/killed_write_leftovers)
+   */
+  void
+  keep_mpi_io_off_named_semaphores()
+  {
+    ::setenv("OMPI_MCA_sharedfp", "^sm", /*overwrite=*/0);
   }
 
 } // namespace
@@ -101,6 +120,7 @@ main(int argc, char **argv)
     }
   const std::string engine = engine_path(argv[0]);
   start_singleton_quickly();
+  keep_mpi_io_off_named_semaphores();
   ::execv(engine.c_str(), argv);
   std::cerr << "granular_dg: internal error: cannot start the engine " << engine << ": "
             << std::strerror(errno) << std::endl;

@@ -70,6 +70,19 @@ namespace granular_dg
       return std::stoll(name.substr(5, 10));
     }
 
+    /// Whether `name` is what a checkpoint write cut short leaves behind:
+    /// .step-NNNNNNNNNN.ckpt.tmp, and the lock file Open MPI's MPI-IO keeps
+    /// beside it while it writes (.step-NNNNNNNNNN.ckpt.tmp-JOB-PID.lock).
+    bool
+    is_partial_checkpoint(const std::string &name)
+    {
+      if (name.size() < 25 || name[0] != '.' || step_of(name.substr(1, 20)) < 0 ||
+          name.compare(21, 4, ".tmp") != 0)
+        return false;
+      return name.size() == 25 ||
+             (name[25] == '-' && name.compare(name.size() - 5, 5, ".lock") == 0);
+    }
+
     /// The checkpoint files of a directory, newest first.
     std::vector<fs::path>
     checkpoint_files(const std::string &directory)
@@ -411,11 +424,8 @@ namespace granular_dg
     const fs::path  dir = checkpoint_directory(directory);
     if (fs::is_directory(dir, ec))
       for (const auto &entry : fs::directory_iterator(dir, ec))
-        {
-          const std::string n = entry.path().filename().string();
-          if (n.size() > 9 && n[0] == '.' && n.compare(n.size() - 9, 9, ".ckpt.tmp") == 0)
-            return true;
-        }
+        if (is_partial_checkpoint(entry.path().filename().string()))
+          return true;
     return false;
   }
 
@@ -435,12 +445,8 @@ namespace granular_dg
     for (const auto &file : checkpoint_files(directory))
       fs::remove(file, ec);
     for (const auto &entry : fs::directory_iterator(dir, ec))
-      {
-        const std::string n = entry.path().filename().string();
-        if (n.size() > 9 && n[0] == '.' && n.compare(n.size() - 9, 9, ".ckpt.tmp") == 0 &&
-            step_of(n.substr(1, n.size() - 5)) >= 0)
-          fs::remove(entry.path(), ec);
-      }
+      if (is_partial_checkpoint(entry.path().filename().string()))
+        fs::remove(entry.path(), ec);
     // removes the folder only if nothing else is in it
     fs::remove(dir, ec);
   }
@@ -573,11 +579,8 @@ namespace granular_dg
       for (unsigned int i = 2; i < files.size(); ++i)
         fs::remove(files[i], ec);
       for (const auto &entry : fs::directory_iterator(file.parent_path(), ec))
-        {
-          const std::string n = entry.path().filename().string();
-          if (n.size() > 9 && n[0] == '.' && n.compare(n.size() - 9, 9, ".ckpt.tmp") == 0)
-            fs::remove(entry.path(), ec);
-        }
+        if (is_partial_checkpoint(entry.path().filename().string()))
+          fs::remove(entry.path(), ec);
     }
 
     /// An error on any rank, as one message on every rank ("" if none).

@@ -94,9 +94,19 @@ checkpoint_test(layered_2d_rest_stop_resume mpi/layered_2d_rest.prm stop:60
 checkpoint_test(mpi_2d_rest_resume_on_3_ranks mpi/layered_2d_rest.prm stop:60 TOLERANCE 1e-12
   OPTIONS --every 20 --np 2 --resume-np 3 --set "Time stepping/final time=2"
           --set "Output/output times=0.5, 1, 1.5" LABELS mpi)
+# What a run killed while writing a checkpoint leaves must not harm later
+# runs: on 2 ranks, the checkpoint of step 10 is written although Open MPI's
+# MPI-IO semaphore for that file name is left taken (the run would wait in
+# MPI_File_open; the test's deadline is 120 s), and a killed write's partial
+# file and MPI-IO lock file are removed by the next checkpoint.
+granular_dg_test(checkpoint/killed_write_leftovers EXE ${TEST_PYTHON}
+  ARGS ${CMAKE_CURRENT_SOURCE_DIR}/checkpoint/killed_write_leftovers.py
+       $<TARGET_FILE:granular_dg> ${CMAKE_CURRENT_SOURCE_DIR}/mpi/layered_2d_small.prm
+  COMPARE stdout KEEP_OUTPUT NUMDIFF -a 0 -r 0 LABELS mpi)
 set_tests_properties(checkpoint/mpi_2d_kill checkpoint/mpi_2d_resume_on_1_rank
   checkpoint/mpi_2d_resume_on_3_ranks checkpoint/mpi_2d_hdf5_stop_resume
-  checkpoint/mpi_2d_rest_resume_on_3_ranks PROPERTIES RUN_SERIAL TRUE)
+  checkpoint/mpi_2d_rest_resume_on_3_ranks checkpoint/killed_write_leftovers
+  PROPERTIES RUN_SERIAL TRUE)
 
 # What cannot be resumed: exit 2 and one line each (verbatim).
 granular_dg_test(checkpoint/bad_resume EXE ${TEST_PYTHON}
