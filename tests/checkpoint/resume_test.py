@@ -8,8 +8,8 @@ usage: resume_test.py EXE PRM MODE [--np A] [--resume-np B] [--every K]
 MODE
   stop:N   the run stops at Time stepping/max steps = N (exit 0, a checkpoint
            at step N); then --resume runs it to the end
-  kill     SIGKILL at a random moment after its first checkpoint (the whole
-           process group: mpirun and its ranks); then --resume
+  kill     SIGKILL at a random moment after its first checkpoint (the ranks,
+           then the rest of the process group: mpirun); then --resume
   sigint   SIGINT after its first checkpoint: exit 130, one line on stderr,
            summary.json status 'interrupted by SIGINT ...', a checkpoint; then
            --resume
@@ -99,7 +99,19 @@ def interrupt(sig):
             print(f'attempt {attempt}: the run ended before the signal', file=sys.stderr)
             continue
         if sig == signal.SIGKILL:
-            os.killpg(p.pid, signal.SIGKILL)
+            if args.np > 0:
+                # the ranks first, and mpirun, left alive for a moment, removes
+                # their shared-memory segments (/dev/shm/vader_segment.*, 4 MB
+                # a rank), which stay on the machine when it is killed with them
+                subprocess.run(['pkill', '-KILL', '-P', str(p.pid)])
+                try:
+                    p.wait(timeout=10)
+                except subprocess.TimeoutExpired:
+                    pass
+            try:
+                os.killpg(p.pid, signal.SIGKILL)
+            except ProcessLookupError:
+                pass
             # ranks that mpirun started in process groups of their own
             pattern = 'Output/directory=' + os.path.abspath('run')
             subprocess.run(['pkill', '-KILL', '-f', pattern])
@@ -181,7 +193,9 @@ if args.mode.startswith('stop:'):
     print(f'stopped run: exit {code}; status: {status.split(";")[0]}')
 elif args.mode == 'kill':
     code, err = interrupt(signal.SIGKILL)
-    print(f'killed run: exit {"SIGKILL" if code == -signal.SIGKILL else code}, '
+    # (mpirun exits with 128 + 9 when its ranks were killed)
+    killed = code in (-signal.SIGKILL, 128 + signal.SIGKILL)
+    print(f'killed run: exit {"SIGKILL" if killed else code}, '
           f'{"has" if checkpoints("run") else "no"} checkpoint')
 elif args.mode == 'sigint':
     code, err = interrupt(signal.SIGINT)
