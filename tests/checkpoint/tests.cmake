@@ -68,12 +68,13 @@ checkpoint_test(network_kill ../prm/network_example_7_3.prm kill
   OPTIONS --every 50 ${network_options})
 
 # 2D under MPI (the small strip of tests/mpi, 2 ranks): killed at random and
-# resumed on 2 ranks; stopped at step 60 and resumed on 1 and on 3 ranks
-# (the checkpoint stores the solution per cell, independent of the
-# partition). To 1e-12 column-scaled.
+# resumed on 2 ranks, with VTU snapshots (every .vtu piece and .pvtu record
+# byte for byte as the uninterrupted run's); stopped at step 60 and resumed
+# on 1 and on 3 ranks (the checkpoint stores the solution per cell,
+# independent of the partition). To 1e-12 column-scaled.
 set(mpi_options --np 2 --set "Time stepping/final time=2" --set "Output/output times=0.5, 1, 1.5")
 checkpoint_test(mpi_2d_kill mpi/layered_2d_small.prm kill OPTIONS --every 10 ${mpi_options}
-  TOLERANCE 1e-12 LABELS mpi)
+  --set "Output/write vtu=true" TOLERANCE 1e-12 LABELS mpi)
 checkpoint_test(mpi_2d_resume_on_1_rank mpi/layered_2d_small.prm stop:60
   OPTIONS --every 20 ${mpi_options} --resume-np 1 TOLERANCE 1e-12 LABELS mpi)
 checkpoint_test(mpi_2d_resume_on_3_ranks mpi/layered_2d_small.prm stop:60

@@ -103,6 +103,13 @@ namespace granular_dg
   write_pvd(const std::string &filename,
             const std::vector<std::pair<double, std::string>> &records);
 
+  /// A snapshot's .pvtu record, as deal.II's write_pvtu_record() made it, but
+  /// for the comment deal.II 9.4.1 starts it with: the date and time of
+  /// writing (VtkFlags::print_date_and_time is not consulted there). Two runs
+  /// with the same results then write the same bytes, as their .vtu pieces do.
+  void
+  write_pvtu(const std::string &filename, std::string record);
+
   /// The XDMF index of HDF5 snapshots: solution.xdmf, a temporal collection
   /// of the snapshots' <Grid> elements (DataOutBase::XDMFEntry's content).
   void

@@ -763,8 +763,9 @@ namespace granular_dg::dg
             pieces.push_back(base + "." + Utilities::int_to_string(r, 4) + ".vtu");
             record_output_file(directory, pieces.back());
           }
-        std::ofstream out(directory + "/" + base + ".pvtu");
-        data_out.write_pvtu_record(out, pieces);
+        std::ostringstream record;
+        data_out.write_pvtu_record(record, pieces);
+        write_pvtu(directory + "/" + base + ".pvtu", record.str());
         record_output_file(directory, base + ".pvtu");
       }
     return base + ".pvtu";

@@ -211,8 +211,10 @@ namespace granular_dg::network
             pieces.push_back(piece(r));
             record_output_file(directory, pieces.back());
           }
-        std::ofstream out(directory + "/" + base + ".pvtu");
-        DataOutBase::write_pvtu_record(out, pieces, internal::vtu_fields, {}, internal::vtu_flags(time, index));
+        std::ostringstream record;
+        DataOutBase::write_pvtu_record(record, pieces, internal::vtu_fields, {},
+                                       internal::vtu_flags(time, index));
+        write_pvtu(directory + "/" + base + ".pvtu", record.str());
         record_output_file(directory, base + ".pvtu");
       }
     files.pvd_entry = files.main_file = base + ".pvtu";
