@@ -71,16 +71,16 @@ namespace granular_dg
     }
 
     /// Whether `name` is what a checkpoint write cut short leaves behind:
-    /// .step-NNNNNNNNNN.ckpt.tmp, and the lock file Open MPI's MPI-IO keeps
-    /// beside it while it writes (.step-NNNNNNNNNN.ckpt.tmp-JOB-PID.lock).
+    /// .step-NNNNNNNNNN.ckpt.tmp, and the files Open MPI's MPI-IO keeps beside
+    /// it while it writes, named after it (its lock file
+    /// .step-NNNNNNNNNN.ckpt.tmp-JOB-PID.lock, its test of file locking
+    /// .step-NNNNNNNNNN.ckpt.tmp.locktest.R)
     bool
     is_partial_checkpoint(const std::string &name)
     {
-      if (name.size() < 25 || name[0] != '.' || step_of(name.substr(1, 20)) < 0 ||
-          name.compare(21, 4, ".tmp") != 0)
-        return false;
-      return name.size() == 25 ||
-             (name[25] == '-' && name.compare(name.size() - 5, 5, ".lock") == 0);
+      return name.size() >= 25 && name[0] == '.' && step_of(name.substr(1, 20)) >= 0 &&
+             name.compare(21, 4, ".tmp") == 0 &&
+             (name.size() == 25 || name[25] == '-' || name[25] == '.');
     }
 
     /// The checkpoint files of a directory, newest first.

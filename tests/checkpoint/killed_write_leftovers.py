@@ -16,8 +16,9 @@ usage: killed_write_leftovers.py EXE PRM      (in an empty directory)
    2 ranks to a checkpoint at step 10, with a deadline. This fails, by the
    deadline, when the component is in use again (try OMPI_MCA_sharedfp=sm in
    the environment).
-2. The partial file of a killed write (.step-N.ckpt.tmp) and the lock file
-   MPI-IO keeps beside it (.step-N.ckpt.tmp-JOB-PID.lock) are removed when
+2. The partial file of a killed write (.step-N.ckpt.tmp) and the files
+   MPI-IO keeps beside it (.step-N.ckpt.tmp-JOB-PID.lock, and
+   .step-N.ckpt.tmp.locktest.R while it tests file locking) are removed when
    the resumed run writes its next checkpoint; a file of the user's that
    only looks similar (.notes.lock) stays.
 """
@@ -63,7 +64,7 @@ finally:
     os.remove(semaphore)
 
 for name in ['.step-0000000015.ckpt.tmp', '.step-0000000015.ckpt.tmp-4242-4242.lock',
-             '.notes.lock']:
+             '.step-0000000015.ckpt.tmp.locktest.1', '.notes.lock']:
     with open(os.path.join('out/checkpoints', name), 'w') as f:
         f.write('left by a killed write\n')
 run('resumed to step 20, a killed write\'s files beside the checkpoint',
