@@ -107,6 +107,7 @@ namespace granular_dg
   /// for the comment deal.II 9.4.1 starts it with: the date and time of
   /// writing (VtkFlags::print_date_and_time is not consulted there). Two runs
   /// with the same results then write the same bytes, as their .vtu pieces do.
+  /// Written atomically and recorded in the directory's manifest.
   void
   write_pvtu(const std::string &filename, std::string record);
 

@@ -766,7 +766,6 @@ namespace granular_dg::dg
         std::ostringstream record;
         data_out.write_pvtu_record(record, pieces);
         write_pvtu(directory + "/" + base + ".pvtu", record.str());
-        record_output_file(directory, base + ".pvtu");
       }
     return base + ".pvtu";
   }

@@ -215,7 +215,6 @@ namespace granular_dg::network
         DataOutBase::write_pvtu_record(record, pieces, internal::vtu_fields, {},
                                        internal::vtu_flags(time, index));
         write_pvtu(directory + "/" + base + ".pvtu", record.str());
-        record_output_file(directory, base + ".pvtu");
       }
     files.pvd_entry = files.main_file = base + ".pvtu";
     return files;
