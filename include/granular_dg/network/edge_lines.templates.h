@@ -136,13 +136,27 @@ namespace granular_dg::network
   /// values of a SIMD batch), a cell's entries after all reads of it and of
   /// its left neighbour (out may overwrite src).
   template <typename Law>
+  template <unsigned int nm, typename Number>
+  DEAL_II_ALWAYS_INLINE inline void
+  EdgeLines<Law>::add_volume_term(const Number *u, const Law &law, Number (&res)[nm]) const
+  {
+    // (degree 0: L_0' = 0, the volume term is 0)
+    for (unsigned int q = 0; nm > 1 && q < nm + 1; ++q)
+      {
+        const auto  &D  = derivative[q];
+        const Number wf = weights[q] * law.value(internal::point_state<nm>(u, basis[q]));
+        for (unsigned int k = 0; k < nm; ++k)
+          res[k] += wf * D[k];
+      }
+  }
+
+  template <typename Law>
   template <unsigned int nm, typename Out>
   void
   EdgeLines<Law>::rate_edge(const double *src, const unsigned int e, const Out &out) const
   {
-    constexpr unsigned int nq = nm + 1;
-    const unsigned int     n  = cells[e];
-    const bool             blending = blend.enabled();
+    const unsigned int n        = cells[e];
+    const bool         blending = blend.enabled();
     if (blending)
       raw_blending_factors<nm>(src, e);
     const auto traces = [&](const unsigned int c, double &s0, double &s1) {
@@ -181,14 +195,7 @@ namespace granular_dg::network
       {
         const double *u       = src + index(e, c);
         double        res[nm] = {};
-        // (degree 0: L_0' = 0, the volume term is 0)
-        for (unsigned int q = 0; nm > 1 && q < nq; ++q)
-          {
-            const auto  &D  = derivative[q];
-            const double wf = weights[q] * law.value(internal::point_state<nm>(u, basis[q]));
-            for (unsigned int k = 0; k < nm; ++k)
-              res[k] += wf * D[k];
-          }
+        add_volume_term<nm>(u, law, res);
         double F_right, V0 = 0, V1 = 0;
         if (c + 1 < n)
           {
@@ -241,18 +248,11 @@ namespace granular_dg::network
                              const double *next, const Law &law, double &F_left,
                              const Out &out) const
   {
-    constexpr unsigned int nq = nm + 1;
-    VA                     u[nm], v[nm];
+    VA u[nm], v[nm];
     load_cell_major<nm>(src + index(e, c), u);
     load_cell_major<nm>(next, v);
     VA res[nm] = {};
-    for (unsigned int q = 0; nm > 1 && q < nq; ++q)
-      {
-        const auto &D  = derivative[q];
-        const VA    wf = weights[q] * law.value(internal::point_state<nm>(u, basis[q]));
-        for (unsigned int k = 0; k < nm; ++k)
-          res[k] += wf * D[k];
-      }
+    add_volume_term<nm>(u, law, res);
     // the faces c + l | c + l + 1: right traces of u, left traces of v
     VA U1 = 0., V0 = 0.;
     for (unsigned int k = 0; k < nm; ++k)
