@@ -335,10 +335,8 @@ namespace granular_dg
   void
   TimeLoop::stop(const std::string &status, const int signal)
   {
-    result.status      = status;
-    result.n_steps     = step;
-    result.final_time  = t;
-    result.wall_time_s = wall_timer.wall_time();
+    result.status = status;
+    record_end();
     if (write_files)
       write_summary();
     timer.reset();
@@ -365,9 +363,7 @@ namespace granular_dg
                (last_main_file.empty() ? "summary.json only (Output/write vtu = false)" :
                                          last_main_file);
       }
-    result.n_steps     = step;
-    result.final_time  = t;
-    result.wall_time_s = wall_timer.wall_time();
+    record_end();
     problem.finish(t, result, write_files);
     if (write_files)
       write_summary();
@@ -378,9 +374,8 @@ namespace granular_dg
   void
   TimeLoop::fail(const RunError &e)
   {
-    result.status     = std::string("failed: ") + e.what();
-    result.n_steps    = step;
-    result.final_time = t;
+    result.status = std::string("failed: ") + e.what();
+    record_end();
     problem.restore(Evolution::Slot::last_good);
     if (write_files && last_record_time != t)
       record();
@@ -394,17 +389,8 @@ namespace granular_dg
   RunResult
   TimeLoop::complete()
   {
-    result.at_rest_from    = rest_from;
-    result.n_steps         = step;
-    result.final_time      = t;
-    result.time_loop_s     = loop_timer.wall_time();
-    result.time_loop_cpu_s = loop_timer.cpu_time();
-    const double updates   = double(info.n_dofs) * info.n_stages * (step - first_step);
-    result.dof_updates_per_s = result.time_loop_s > 0 ? updates / result.time_loop_s : 0;
-    result.dof_updates_per_cpu_s_per_rank =
-      result.time_loop_cpu_s > 0 ?
-        updates / Utilities::MPI::n_mpi_processes(MPI_COMM_WORLD) / result.time_loop_cpu_s :
-        0;
+    result.at_rest_from = rest_from;
+    record_end();
     problem.finish(t, result, write_files);
     result.wall_time_s = wall_timer.wall_time();
     if (!write_files)
@@ -423,6 +409,22 @@ namespace granular_dg
     // collective: every rank takes part, rank 0 prints
     timer->print_wall_time_statistics(MPI_COMM_WORLD);
     return result;
+  }
+
+  void
+  TimeLoop::record_end()
+  {
+    result.n_steps         = step;
+    result.final_time      = t;
+    result.wall_time_s     = wall_timer.wall_time();
+    result.time_loop_s     = loop_timer.wall_time();
+    result.time_loop_cpu_s = loop_timer.cpu_time();
+    const double updates   = double(info.n_dofs) * info.n_stages * (step - first_step);
+    result.dof_updates_per_s = result.time_loop_s > 0 ? updates / result.time_loop_s : 0;
+    result.dof_updates_per_cpu_s_per_rank =
+      result.time_loop_cpu_s > 0 ?
+        updates / Utilities::MPI::n_mpi_processes(MPI_COMM_WORLD) / result.time_loop_cpu_s :
+        0;
   }
 
   RunResult

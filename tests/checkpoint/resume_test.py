@@ -148,14 +148,30 @@ def at_the_end(directory):
     return bool(steps) and max(steps) >= last
 
 
-def status_of(directory):
-    """summary.json's status (of the part that ran last, for two-part runs)."""
+def last_summary(directory):
+    """summary.json (of the part that ran last, for two-part runs); None if none."""
     found = [os.path.join(r, 'summary.json') for r, d, f in os.walk(directory)
              if 'summary.json' in f]
     if not found:
-        return '(no summary.json)'
+        return None
     with open(max(found, key=os.path.getmtime)) as f:
-        return json.load(f)['status']
+        return json.load(f)
+
+
+def status_of(directory):
+    s = last_summary(directory)
+    return s['status'] if s else '(no summary.json)'
+
+
+def cost_recorded(directory):
+    """Whether summary.json of a run that stopped early records the cost of
+    its time loop (wall and CPU time, throughput), as a completed run's does."""
+    s = last_summary(directory)
+    if s is None:
+        return 'no: no summary.json'
+    ok = all(s[k] > 0 for k in ('time_loop_s', 'time_loop_cpu_s', 'dof_updates_per_s',
+                                'dof_updates_per_cpu_s_per_rank'))
+    return 'yes' if ok else 'no: ' + ', '.join(f'{k} {s[k]}' for k in sorted(TIMING) if k in s)
 
 
 def flatten(d, prefix=''):
@@ -191,6 +207,7 @@ if args.mode.startswith('stop:'):
     code, out, err = run('run', args.np, '--set', f'Time stepping/max steps={n}')
     status = status_of('run')
     print(f'stopped run: exit {code}; status: {status.split(";")[0]}')
+    print(f"  the time loop's cost in summary.json: {cost_recorded('run')}")
 elif args.mode == 'kill':
     code, err = interrupt(signal.SIGKILL)
     # (mpirun exits with 128 + 9 when its ranks were killed)
@@ -206,6 +223,7 @@ elif args.mode == 'sigint':
     print(f'  stderr: {" ".join(lines[-1].split()[:4]) if lines else ""} ...')
     print(f'  status: {" ".join(status.split()[:3])} ...')
     print(f'  {"the status names the checkpoint" if ".ckpt; continue with --resume" in status else status}')
+    print(f"  the time loop's cost in summary.json: {cost_recorded('run')}")
 else:
     sys.exit('resume_test: unknown mode ' + args.mode)
 

@@ -87,6 +87,11 @@ namespace granular_dg
     fail(const RunError &error);
     RunResult
     complete();
+    /// The run's end in result, however it ends: steps, time, wall time and
+    /// the time loop's cost and throughput (of the steps since the start or
+    /// the resume).
+    void
+    record_end();
     void
     write_summary() const;
     /// The state of the loop in a checkpoint (time, step, dt, snapshots, the
