@@ -22,11 +22,6 @@ from granular_dg.plot import STYLES
 from granular_dg.run import Runs
 
 
-def positive(v):
-    """v with the non-positive values left out of a log plot."""
-    return np.where(v > 0, v, np.nan)
-
-
 def figure(a):
     final, history = outputs.read_table(os.path.join(a.run, "final-profile.csv")), outputs.history(a.run)
     front = np.max(history["front_position"])
@@ -48,7 +43,8 @@ def figure(a):
     plot.label(ax[1, 0], "z", "u", legend=8, grid=0)
     for i, (d, name) in enumerate([plot.split_run(a.run)] + a.compare):
         h = outputs.history(d)
-        ax[1, 1].semilogy(h["time"], positive(h["max_velocity"]), STYLES[i % 4], color="k", lw=1, label=name)
+        ax[1, 1].semilogy(h["time"], np.ma.masked_less_equal(h["max_velocity"], 0), STYLES[i % 4], color="k", lw=1,
+                          label=name)
     plot.label(ax[1, 1], "t", "max_z v(z, t)", legend=8, which="major")
     if a.title:
         fig.suptitle(a.title)
@@ -77,7 +73,7 @@ def naive(a):
     for i, (d, name) in enumerate(a.runs):
         h = outputs.history(d)
         ax[0].plot(h["time"], h["probe_strain"], STYLES[i % 4], lw=1.2, label=name)
-        ax[1].semilogy(h["time"], positive(h["max_velocity"]), STYLES[i % 4], lw=1.2, label=name)
+        ax[1].semilogy(h["time"], np.ma.masked_less_equal(h["max_velocity"], 0), STYLES[i % 4], lw=1.2, label=name)
     plot.label(ax[0], "t", "strain at z = 0.5", "material at rest must keep its strain", legend=8)
     plot.label(ax[1], "t", "max_z v", legend=8, which="major")
     plot.save(fig, a.out)

@@ -24,18 +24,10 @@ from granular_dg.run import HOPPER_SAMPLED, NO_SNAPSHOTS, Runs
 OUT = os.environ.get('OUTPUT_DIR', 'output')
 RANGE_ANGLES = [18.5, 19, 20, 21, 21.5, 22, 23, 24, 25, 26, 27, 28, 29, 30, 31, 31.5, 32, 33]
 SAMPLED = (*HOPPER_SAMPLED, *NO_SNAPSHOTS)
-plt = plot.pyplot()
 
 
 def read(case, name):
     return outputs.read_table(os.path.join(OUT, 'hopper_' + case, name))
-
-
-def have(*cases):
-    missing = [c for c in cases if not os.path.isdir(os.path.join(OUT, 'hopper_' + c))]
-    if missing:
-        print('skipped (no run): ' + ', '.join(missing))
-    return not missing
 
 
 def save(fig, name, tight=True):
@@ -45,7 +37,7 @@ def save(fig, name, tight=True):
 
 def fig9():
     d = read('fig9_scan', 'fig9-scan.csv')
-    fig, ax = plt.subplots(figsize=(6.4, 5))
+    fig, ax = plot.subplots(figsize=(6.4, 5))
     T = d['Theta_w_deg']
     ax.plot(T, T, 'k:', lw=1, label=r'$\theta_w = \Theta_w$')
     C = np.where(np.isfinite(d['lambda_max']), np.maximum(d['theta_w_min_C_deg'], 0), np.nan)
@@ -72,25 +64,24 @@ def fig9():
 
 
 def fig10():
-    fig, axes = plt.subplots(2, 2, figsize=(10, 7))
-    for col, g, bound in ((0, 'wedge', 0.025), (1, 'cone', 0.5)):
+    fig, axes = plot.subplots(2, 2, figsize=(10, 7))
+    for top, bottom, g, bound in zip(axes[0], axes[1], ('wedge', 'cone'), (0.025, 0.5)):
         d = read('radial_' + g, 'hopper-steps.csv')
-        ax = axes[0, col]
-        ax.plot(d['tau'], 100 * d['max_rel_diff_radial'], lw=0.8)
-        plot.label(ax, r'$\tau = -\ln(r/r_0)$', 'max relative difference to the radial field (%)',
+        top.plot(d['tau'], 100 * d['max_rel_diff_radial'], lw=0.8)
+        plot.label(top, r'$\tau = -\ln(r/r_0)$', 'max relative difference to the radial field (%)',
                    '%s, 30$^\\circ$, P1, N = 400 (paper: < %g %%)' % (g, bound), size=10)
-        ax.set_ylim(bottom=0)
+        top.set_ylim(bottom=0)
         p = os.path.join(OUT, 'hopper_perturbed_' + g, 'hopper-steps.csv')
-        ax = axes[1, col]
         if os.path.exists(p):
             e = outputs.read_table(p)
-            ax.semilogy(e['tau'], e['max_rel_diff_radial'], lw=0.8, label=r'$T_{rr}(\tau = 0)$ perturbed by $10^{-3}$')
+            bottom.semilogy(e['tau'], e['max_rel_diff_radial'], lw=0.8,
+                            label=r'$T_{rr}(\tau = 0)$ perturbed by $10^{-3}$')
             kappa = 0.9272 if g == 'wedge' else -0.8075
             t = np.linspace(0, e['tau'][-1], 50)
             i = np.searchsorted(e['tau'], 1.0)
-            ax.semilogy(t, e['max_rel_diff_radial'][i] * np.exp(kappa * (t - e['tau'][i])), 'k--', lw=1,
-                        label=r'$e^{\kappa\tau}$, $\kappa$ = %+.3f (linearised DG spectrum)' % kappa)
-        plot.label(ax, r'$\tau$', 'max relative difference', legend=8 if os.path.exists(p) else None)
+            bottom.semilogy(t, e['max_rel_diff_radial'][i] * np.exp(kappa * (t - e['tau'][i])), 'k--', lw=1,
+                            label=r'$e^{\kappa\tau}$, $\kappa$ = %+.3f (linearised DG spectrum)' % kappa)
+        plot.label(bottom, r'$\tau$', 'max relative difference', legend=8 if os.path.exists(p) else None)
     fig.suptitle('Fig. 10: preservation of the radial field (top); growth/decay of a '
                  'perturbation (bottom)', fontsize=11)
     save(fig, 'hopper_fig10_preservation.png')
@@ -98,7 +89,7 @@ def fig10():
 
 def profiles(case, axes, label=None):
     files = outputs.files(os.path.join(OUT, 'hopper_' + case), 'stress')
-    cmap = plt.get_cmap('viridis')
+    cmap = plot.pyplot().get_cmap('viridis')
     for k, d in enumerate(map(outputs.read_table, files)):
         tau, c = d.value('tau'), cmap(k / max(1, len(files) - 1))
         for ax, name in zip(axes, ('T_rr_over_r', 'T_rtheta_over_r', 'T_thetatheta_over_r')):
@@ -109,25 +100,24 @@ def profiles(case, axes, label=None):
 
 
 def transition_figure(case, number):
-    fig = plt.figure(figsize=(13, 7.5))
-    profiles(case, [fig.add_subplot(2, 3, i + 1) for i in range(3)])
+    fig, axes = plot.subplots(2, 3, figsize=(13, 7.5))
+    profiles(case, axes[0])
     d = read(case, 'hopper-field.csv')
     taus = np.unique(d['tau'])
     th = d['theta_deg'][d['tau'] == taus[0]]
-    for i, (name, label) in enumerate((('T_rr_over_r', r'$T_{rr}/r$ over $(\theta, \tau)$'),
-                                       ('T_rtheta_over_r', r'$T_{r\theta}/r$ over $(\theta, \tau)$'),
-                                       ('psi_deg', r'Sokolovskii angle $\psi$ (limit 28.95$^\circ$)'))):
-        ax = fig.add_subplot(2, 3, 4 + i)
+    for ax, (name, label) in zip(axes[1], (('T_rr_over_r', r'$T_{rr}/r$ over $(\theta, \tau)$'),
+                                           ('T_rtheta_over_r', r'$T_{r\theta}/r$ over $(\theta, \tau)$'),
+                                           ('psi_deg', r'Sokolovskii angle $\psi$ (limit 28.95$^\circ$)'))):
         scale, cmap = (1, 'magma') if name == 'psi_deg' else (1e3, 'viridis')
         m = ax.pcolormesh(th, taus, d[name].reshape(len(taus), len(th)) / scale, shading='auto', cmap=cmap)
         plot.label(ax, r'$\theta$ (deg)', r'$\tau = -\ln(r/r_0)$', label, size=9, grid=0)
-        plt.colorbar(m, ax=ax, label='deg' if name == 'psi_deg' else 'kPa/m')
+        fig.colorbar(m, ax=ax, label='deg' if name == 'psi_deg' else 'kPa/m')
     fig.suptitle(r'Fig. %s: %s $%s^\circ \to %s^\circ$, P$^1$, N = 400' % (number, *case.split('_')), fontsize=11)
     save(fig, 'hopper_fig%s_%s.png' % (number, case))
 
 
 def fig11():
-    fig, axes = plt.subplots(2, 3, figsize=(13, 7.5))
+    fig, axes = plot.subplots(2, 3, figsize=(13, 7.5))
     profiles('cone_30_24_p1', axes[0], r'P$^1$, N = 400')
     profiles('cone_30_24_p2', axes[1], r'P$^2$, N = 200')
     fig.suptitle(r'Fig. 11: cone $30^\circ \to 24^\circ$, P$^1$ N = 400 (top) vs P$^2$ '
@@ -141,7 +131,7 @@ def work_precision_figure():
         print('skipped (no run): work precision (contrib/hopper.py precision)')
         return
     d = outputs.read_table(path)
-    fig, axes = plt.subplots(1, 2, figsize=(11, 4.6))
+    fig, axes = plot.subplots(1, 2, figsize=(11, 4.6))
     panels = ((axes[0], ((0, '-', 'limiter'), (2, '--', 'no limiter')),
                r'radial field, cone 30$^\circ$, $\tau$ = 1: error vs the exact field'),
               (axes[1], ((1, '-', 'limiter'),), r'cone 30$^\circ \to$ 25$^\circ$, $\tau$ = 0.5: error vs P3, N = 800'))
@@ -171,7 +161,10 @@ def figures(a):
     drawings += [(transition_figure, (case, number), [case]) for case, number in
                  (('cone_30_25', '12'), ('wedge_30_25', '13'), ('wedge_30_35', '14'), ('cone_30_31', '14b'))]
     for draw, args, cases in drawings:
-        if have(*cases):
+        missing = [c for c in cases if not os.path.isdir(os.path.join(OUT, 'hopper_' + c))]
+        if missing:
+            print('skipped (no run): ' + ', '.join(missing))
+        else:
             draw(*args)
     work_precision_figure()
 

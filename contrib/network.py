@@ -26,7 +26,6 @@ TABLE_1 = {
     '7.4': [0.14459, 0.08016, 0.04651, 0.02711, 0.01495, 0.00925, 0.00480, 0.00295, 0.00152, 0.00081],
     '7.5': [0.11630, 0.07136, 0.04372, 0.02255, 0.01360, 0.00653, 0.00325, 0.00160, 0.00086, 0.00040],
 }
-COLORS = ['tab:blue', 'tab:orange', 'tab:green', 'tab:red']
 
 
 def by_degree(studies, case):
@@ -38,7 +37,7 @@ def work_precision(studies, figures):
     fig, axes = plot.subplots(1, 2, figsize=(10, 4.2))
     for ax, ex in zip(axes, ['7_3', '7_5']):
         for p, rs in sorted(by_degree(studies, 'example_' + ex).items()):
-            ax.loglog([r['cpu_time_s'] for r in rs], [r['l1_error'] for r in rs], 'o-', color=COLORS[p], ms=4,
+            ax.loglog([r['cpu_time_s'] for r in rs], [r['l1_error'] for r in rs], 'o-', color='C%d' % p, ms=4,
                       label='degree %d%s' % (p, ' (paper: FV, Euler)' if p == 0 else ''))
             ax.annotate('l=%d' % rs[-1]['level'], (rs[-1]['cpu_time_s'], rs[-1]['l1_error']),
                         fontsize=7, xytext=(3, -8), textcoords='offset points')
@@ -67,9 +66,9 @@ def smooth(studies, figures):
                                                'vertex without volume (Rankine-Hugoniot solved)']):
         for p, rs in sorted(by_degree(studies, 'smooth_width_' + w).items()):
             dx = [r['dx'] for r in rs]
-            ax.loglog(dx, [r['l1_error'] for r in rs], 'o-', color=COLORS[p], ms=4, label='degree %d' % p)
+            ax.loglog(dx, [r['l1_error'] for r in rs], 'o-', color='C%d' % p, ms=4, label='degree %d' % p)
             # ingoing edges (upstream of the vertex) dotted
-            ax.loglog(dx, [r['l1_error_edge_1'] + r['l1_error_edge_2'] for r in rs], ':', color=COLORS[p], lw=1)
+            ax.loglog(dx, [r['l1_error_edge_1'] + r['l1_error_edge_2'] for r in rs], ':', color='C%d' % p, lw=1)
         plot.label(ax, 'dx', title=title, size=10)
     plot.label(axes[0], y='L1 error at T (solid: all, dotted: ingoing edges)', legend=8, grid=0)
     plot.save(fig, os.path.join(figures, 'network_smooth_order.png'), dpi=130, say=True)

@@ -16,9 +16,8 @@ import os
 import sys
 
 from paraview.simple import (AssignViewToLayout, ColorBy, Contour, CreateLayout, CreateRenderView, ExtractSurface,
-                             GetAnimationScene, GetColorTransferFunction, GetScalarBar, Glyph, OpenDataFile, Render,
-                             ResetCamera, SaveScreenshot, SetProperties, Show, Text, Threshold, Tube, UpdatePipeline,
-                             WarpByScalar)
+                             GetColorTransferFunction, GetScalarBar, Glyph, OpenDataFile, Render, ResetCamera,
+                             SaveScreenshot, SetProperties, Show, Text, Threshold, Tube, UpdatePipeline, WarpByScalar)
 
 # the titles of doc/figures/hopper_paraview_<case>.png, by the run's directory
 HOPPER_TITLES = {'hopper_cone_30_25': 'cone 30 -> 25 deg, r from 1.5 r0 to 0.05 r0: T_rr/r, white: psi every 5 deg',
@@ -37,18 +36,16 @@ def white_view(size, layout=None, hint=0, time=None):
     return view
 
 
-def coloured(source, view, array, lut=None, rescale=None):
-    """source shown in view coloured by the point array (by lut if given,
-    else by the array's Viridis colour map, rescaled to the data by
-    RescaleTransferFunctionToDataRange(*rescale))."""
+def coloured(source, view, array, rescale=None):
+    """source shown in view coloured by the point array's colour map (for u
+    the fixed one of u_scale; with rescale: the Viridis map rescaled to the
+    data by RescaleTransferFunctionToDataRange(*rescale), and its bar)."""
     shown = Show(source, view)
     ColorBy(shown, ('POINTS', array))
-    if lut:
-        shown.LookupTable = lut
-        return shown
-    shown.RescaleTransferFunctionToDataRange(*rescale)
-    GetColorTransferFunction(array).ApplyPreset('Viridis (matplotlib)', True)
-    shown.SetScalarBarVisibility(view, True)
+    if rescale:
+        shown.RescaleTransferFunctionToDataRange(*rescale)
+        GetColorTransferFunction(array).ApplyPreset('Viridis (matplotlib)', True)
+        shown.SetScalarBarVisibility(view, True)
     return shown
 
 
@@ -110,9 +107,8 @@ def hopper(pvd, png, array='T_rr_over_r', text=None):
     scalar_bar(GetColorTransferFunction(array), view,
                array.replace('_over_r', '/r') + (' (Pa/m)' if 'over_r' in array else ''),
                TitleFontSize=18, LabelFontSize=16, ScalarBarLength=0.4, Position=[0.85, 0.1])
-    lines = Show(Contour(Input=reader, ContourBy=['POINTS', 'psi_deg'], Isosurfaces=list(range(-25, 30, 5))), view)
-    ColorBy(lines, None)
-    SetProperties(lines, AmbientColor=[1, 1, 1], DiffuseColor=[1, 1, 1], LineWidth=1.5)
+    Show(Contour(Input=reader, ContourBy=['POINTS', 'psi_deg'], Isosurfaces=list(range(-25, 30, 5))), view,
+         ColorArrayName=[None, ''], AmbientColor=[1, 1, 1], DiffuseColor=[1, 1, 1], LineWidth=1.5)
     title(view, text or HOPPER_TITLES.get(os.path.basename(os.path.dirname(pvd)),
                                           'hopper stress field; white: psi contours every 5 deg'), 20)
     flat(view)
@@ -124,9 +120,6 @@ def layered(pvd, png, time, array='stress'):
     times = list(reader.TimestepValues)
     if not any(abs(t - time) < 1e-9 * max(1, time) for t in times):
         sys.exit('paraview_figures: no output at t = %g in %s (has %s)' % (time, pvd, times))
-    scene = GetAnimationScene()
-    scene.UpdateAnimationUsingDataTimeSteps()
-    scene.AnimationTime = time
     view = white_view([1800, 320], time=time)
     coloured(reader, view, array, rescale=(False, True))
     scalar_bar(GetColorTransferFunction(array), view, array, Orientation='Vertical', Position=[0.93, 0.08],
@@ -147,16 +140,15 @@ def network(directory, png, time=None):
     plane = white_view([900, 700], layout, time=time)
     lines, vertices = edges_and_vertices(reader, 0.09)
     tubes = Tube(Input=lines, Radius=0.018, NumberofSides=16)
-    shown = coloured(tubes, plane, 'u', lut)
-    scalar_bar(lut, plane, 'u', Position=[0.88, 0.08], ScalarBarLength=0.4)
-    shown.SetScalarBarVisibility(plane, True)
-    coloured(vertices, plane, 'u', lut)
+    coloured(tubes, plane, 'u')
+    scalar_bar(lut, plane, 'u', Position=[0.88, 0.08], ScalarBarLength=0.4, Visibility=1)
+    coloured(vertices, plane, 'u')
     title(plane, 't = %g' % time, 14, 'Upper Left Corner')
     camera(plane, [0, 0, 6], [0, 0, 0], [0, 1, 0], 1.2)
     # right: u as height above the plane, over the network in grey
     height = white_view([900, 700], layout, 2, time=time)
     warped = WarpByScalar(Input=lines, Scalars=['POINTS', 'u'], ScaleFactor=0.35)
-    coloured(Tube(Input=warped, Radius=0.012, NumberofSides=12), height, 'u', lut)
+    coloured(Tube(Input=warped, Radius=0.012, NumberofSides=12), height, 'u')
     Show(tubes, height, DiffuseColor=[0.75] * 3, AmbientColor=[0.75] * 3, ColorArrayName=[None, ''])
     camera(height, [0.6, -5.0, 1.6], [0, 0, 0.3], [0, 0, 1], 1.5)
     lut.RescaleTransferFunction(*u_range)  # showing can rescale; fix it again
@@ -180,26 +172,23 @@ def city(directory, png, wanted='2,3,4,5'):
     (width, height), bar_width = (420, 470), 120
     layout = CreateLayout('city grid')
     layout.SeparatorWidth = 0
-    views, cell, remaining = [], 0, len(times) * width + bar_width
+    cell, remaining = 0, len(times) * width + bar_width
     for time in times:  # a row of cells: split the remaining right part of the layout each time
         left = layout.SplitHorizontal(cell, float(width) / remaining)
         remaining -= width
         view = white_view([width, height], layout, left, time=time)
         cell = left + 1
         for source in (roads, junctions):
-            coloured(source, view, 'u', lut).SetScalarBarVisibility(view, False)
+            coloured(source, view, 'u').SetScalarBarVisibility(view, False)
         title(view, 't = %g' % time, 22)
         Render(view)  # the first render resets the camera: set ours after it
         # top view of the square [-1, 6]^2, a margin for the tubes and the title
         SetProperties(view, CameraPosition=[2.5, 2.5, 20], CameraFocalPoint=[2.5, 2.75, 0], CameraViewUp=[0, 1, 0],
                       CameraParallelProjection=1, CameraParallelScale=3.85 * height / width)
-        views.append(view)
-    views.append(white_view([bar_width, height], layout, cell))  # the colour bar alone
-    scalar_bar(lut, views[-1], 'density u', TitleFontSize=18, LabelFontSize=16, Position=[0.12, 0.12],
+    bar = white_view([bar_width, height], layout, cell)  # the colour bar alone
+    scalar_bar(lut, bar, 'density u', TitleFontSize=18, LabelFontSize=16, Position=[0.12, 0.12],
                ScalarBarLength=0.72, RangeLabelFormat='%.2f', ScalarBarThickness=20, Visibility=1)
     lut.RescaleTransferFunction(0.0, u_max)  # showing can rescale; fix it again
-    for view in views:
-        Render(view)
     save(png, layout, [len(times) * width + bar_width, height],
          ' (times %s, u in [0, %.3g])' % (', '.join('%g' % t for t in times), u_max))
 

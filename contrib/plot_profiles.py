@@ -17,7 +17,6 @@
 import numpy as np
 
 from granular_dg import main, outputs, plot
-from granular_dg.plot import STYLES
 
 
 def numbers(text):
@@ -29,7 +28,7 @@ def runs(a):
     for i, (d, name) in enumerate(a.runs):
         for t in outputs.profiles(d):
             if t.time != 0 and (not a.times or any(abs(t.time - s) < 1e-9 for s in numbers(a.times))):
-                ax.plot(t["x"], t[a.column], STYLES[i % 4], lw=1, label="%s t=%g" % (name, t.time))
+                ax.plot(t["x"], t[a.column], plot.STYLES[i % 4], lw=1, label="%s t=%g" % (name, t.time))
     if a.xlim:
         ax.set_xlim(*numbers(a.xlim))
     plot.label(ax, "x", a.column, a.title, legend=7)

@@ -12,6 +12,7 @@ schemes.md (the cheapest scheme and degree per target error); one process at a t
 """
 import os
 import tempfile
+from pathlib import Path
 
 from granular_dg import arguments, outputs, plot
 from granular_dg.run import cfl_limits, run_case
@@ -37,7 +38,7 @@ def chart(rows, case, path):
     fig, ax = plot.subplots(figsize=(6.4, 4.6))
     for scheme in SCHEMES:
         for degree, style in ((2, "-o"), (3, "--s")):
-            r = [x for x in rows if x["case"] == case and x["scheme"] == scheme and x["degree"] == degree]
+            r = outputs.select(rows, case=case, scheme=scheme, degree=degree)
             ax.loglog([x["cpu_s"] for x in r], [x["l2_error"] for x in r], style, ms=4,
                       label="%s P%d" % (scheme, degree))
     plot.label(ax, "CPU time of the time loop [s]", "L2 error at the final time",
@@ -50,11 +51,10 @@ def cheapest(rows):
     table = []
     for case, target in ((c, t) for c in CASES for t in TARGETS):
         ok = sorted((x for x in rows if x["case"] == case and x["l2_error"] <= target), key=lambda x: x["cpu_s"])
-        best = ok[0] if ok else None
-        other = next((x for x in ok if x["scheme"] != best["scheme"]), None)
+        other = next((x for x in ok if x["scheme"] != ok[0]["scheme"]), None)
         describe = lambda x: ["%s P%d, %d cells" % (x["scheme"], x["degree"], x["cells"]), "%.3g" % x["cpu_s"]] \
             if x else ["", ""]
-        table.append([case, "%g" % target] + (describe(best) if best else ["none reaches it", ""]) + describe(other))
+        table.append([case, "%g" % target] + (describe(ok[0]) if ok else ["none reaches it", ""]) + describe(other))
     return outputs.markdown(["case", "target L2 error", "cheapest (scheme, degree, cells)", "CPU s",
                              "next best scheme", "CPU s"], table)
 
@@ -70,6 +70,5 @@ if __name__ == "__main__":
     for case in CASES:
         chart(rows, case, os.path.join(a.out, "schemes-%s.png" % case))
     table = cheapest(rows)
-    with open(os.path.join(a.out, "schemes.md"), "w") as f:
-        f.write(table)
+    Path(a.out, "schemes.md").write_text(table)
     print(table)

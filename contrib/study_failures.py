@@ -16,7 +16,6 @@ from granular_dg import outputs, plot
 from granular_dg.outputs import select
 from granular_dg.run import tag
 
-NAN = float("nan")
 # SSP-RK3 with upwind DG of degree p on u_t + u_x = 0: the linear stability
 # limit of nu = a dt/h (Fourier analysis: tests/unit/rk_stability_limits.cc computes them)
 LINEAR_RK3 = {0: 1.256373, 1: 0.409590, 2: 0.209754, 3: 0.130094, 4: 0.089687}
@@ -34,13 +33,13 @@ def fmt(x, digits=3):
 
 def strain_l1(s, d=None):
     """L1 error of the strain (component 0) against the reference."""
-    return s.get("errors", {}).get("component_0_l1_l2_linf", [NAN])[0]
+    return s.get("errors", {}).get("component_0_l1_l2_linf", [math.nan])[0]
 
 
 def diagnostics(s, *keys):
     """The named entries of summary.json's diagnostics (NaN where missing)."""
     dg = s.get("diagnostics", {})
-    return {k: dg.get(k, NAN) for k in keys}
+    return {k: dg.get(k, math.nan) for k in keys}
 
 
 def layered_reference_sets(ctx):
@@ -73,10 +72,10 @@ def interfaces(ctx):
             "Limiter/scheme=" + limiter, "Time stepping/CFL number=%.12g" % (0.8 / (2 * p + 1))])
         s = run.summary
         return dict(config=label, flux=flux, limiter=limiter, degree=p, cells_per_layer=n, exit=run.code,
-                    l1_strain_error=strain_l1(s) if run.code == 0 else NAN,
+                    l1_strain_error=strain_l1(s) if run.code == 0 else math.nan,
                     **diagnostics(s, "interface_stress_jump_max", "interface_stress_jump_mean", "min_strain",
                                   "max_strain"),
-                    time_loop_cpu_s=s.get("time_loop_cpu_s", NAN), final_time=s.get("final_time", ""),
+                    time_loop_cpu_s=s.get("time_loop_cpu_s", math.nan), final_time=s.get("final_time", ""),
                     message=run.stderr[:160])
 
     rows = ctx.pmap(one, [(*c, p, n) for c in INTERFACE_CONFIGS for p in degrees for n in per_layer])
@@ -132,9 +131,9 @@ def friction(ctx):
             "Mesh/cells=%d" % n, "Time stepping/CFL number=%.12g" % cfl])
         s, steps = run.summary, run.summary.get("n_time_steps", 0)
         return dict(friction=label, cells=n, cfl=cfl, exit=run.code,
-                    dt=s.get("final_time", 8.) / steps if steps else NAN,
+                    dt=s.get("final_time", 8.) / steps if steps else math.nan,
                     **diagnostics(s, "velocity_sign_flips", "probe_strain_drift", "max_velocity"),
-                    time_loop_cpu_s=s.get("time_loop_cpu_s", NAN), message=run.stderr[:160])
+                    time_loop_cpu_s=s.get("time_loop_cpu_s", math.nan), message=run.stderr[:160])
 
     rows = ctx.pmap(one, items)
     ctx.csv("failure-friction", rows)
@@ -207,17 +206,13 @@ def rk3(ctx):
 
 # --------------------------------------------------------------------- shock
 def wall_strain_bound(rho=2., K=2., beta=0.3, speed=0.4):
-    """The strain of the simple wave at the wall moving with the largest
-    speed of its data: phi(eps) = int_0^eps c de = speed, c = sqrt(sigma'/rho),
-    sigma = K eps + beta K^2 eps^2 (law (1.4)); the range [0, eps_w] holds
-    the simple wave the wall drives (prm/elasticity_shock.prm: rho = K = 2,
-    beta = 0.3, u(0, t) = -0.2 (1 + cos(...)), |u| <= 0.4)."""
-    phi = lambda e: ((K + 2 * beta * K * K * e) ** 1.5 - K ** 1.5) / (3 * beta * K * K * math.sqrt(rho))
-    lo, hi = 0., 10.
-    for _ in range(200):
-        mid = 0.5 * (lo + hi)
-        lo, hi = (mid, hi) if phi(mid) < speed else (lo, mid)
-    return lo
+    """The strain eps_w of the simple wave at the wall moving with the largest
+    speed of its data: phi(eps_w) = speed for phi(eps) = int_0^eps c de =
+    ((K + 2 beta K^2 eps)^1.5 - K^1.5) / (3 beta K^2 sqrt(rho)), c =
+    sqrt(sigma'/rho), sigma = K eps + beta K^2 eps^2 (law (1.4)); the range
+    [0, eps_w] holds the simple wave the wall drives (prm/elasticity_shock.prm:
+    rho = K = 2, beta = 0.3, u(0, t) = -0.2 (1 + cos(...)), |u| <= 0.4)."""
+    return ((K ** 1.5 + 3 * beta * K * K * math.sqrt(rho) * speed) ** (2 / 3) - K) / (2 * beta * K * K)
 
 
 def shock(ctx):
@@ -230,7 +225,7 @@ def shock(ctx):
         run = ctx.run("shock/%s-p%d" % (lim, p), "prm/elasticity_shock.prm", EVERYWHERE + [
             "Discretization/degree=%d" % p, "Limiter/scheme=" + lim, "Time stepping/CFL number=%.12g" % cfl])
         r = dict(limiter=label, degree=p, cfl=cfl, exit=run.code, message=run.stderr[:160],
-                 time_loop_cpu_s=run.summary.get("time_loop_cpu_s", NAN))
+                 time_loop_cpu_s=run.summary.get("time_loop_cpu_s", math.nan))
         if run.code == 0:
             prof = outputs.read_table(outputs.latest(run.directory, "profile"))
             strain = prof["strain"]
@@ -294,9 +289,9 @@ def hopper(ctx):
         code, s = run.code, run.summary
         return dict(geometry=g, upper=30, lower=a, cells=n, exit=code,
                     outcome="completes" if code == 0 else ("hyperbolicity lost" if code == 3 else "exit %d" % code),
-                    tau_reached=s.get("final_time", NAN),
+                    tau_reached=s.get("final_time", math.nan),
                     **diagnostics(s, "min_hyperbolicity_margin", "tau_of_min_margin", "theta_of_min_margin_deg"),
-                    time_loop_cpu_s=s.get("time_loop_cpu_s", NAN), message=run.stderr[:200])
+                    time_loop_cpu_s=s.get("time_loop_cpu_s", math.nan), message=run.stderr[:200])
 
     rows = ctx.pmap(one, [(g, a, n) for g, a in cases for n in meshes] + finest)
     ctx.csv("failure-hopper", rows)

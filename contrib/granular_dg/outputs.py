@@ -111,15 +111,11 @@ def read_json(path, keys=()):
     return data
 
 
-def _in(directory, name):
-    return directory if directory.endswith(name) else os.path.join(directory, name)
-
-
 def _reader(name, keys=()):
-    """The reader of a run's file NAME, given its directory or the file: a
-    Table, or the JSON object with the keys."""
+    """The reader of a run's file NAME, given its directory: a Table, or the
+    JSON object with the keys."""
     read = (lambda path: read_json(path, keys)) if name.endswith(".json") else read_table
-    return lambda directory: read(_in(directory, name))
+    return lambda directory: read(os.path.join(directory, name))
 
 
 # a run's summary.json, the benchmark.json of a --benchmark run, its timeseries.csv and convergence.csv, and
@@ -179,7 +175,7 @@ def edge_profiles(directory):
 
 def sgn_map(directory):
     """(t, z, sgn(v)) of the column's sgn-map.csv: times, cell centres, values."""
-    t = read_table(_in(directory, "sgn-map.csv"))
+    t = read_table(os.path.join(directory, "sgn-map.csv"))
     try:
         z = np.array(t.header[1:], dtype=float)
     except ValueError:
