@@ -12,8 +12,9 @@ import numpy as np
 
 from .outputs import NUMBER, read_table
 
-# timing fields: wall and CPU times and the rates derived from them
-TIMING = re.compile(r"(wall|cpu|time_loop|dof_updates|seconds|_s$|elapsed|load)", re.I)
+# what measures the process rather than the solution: wall and CPU times, the
+# rates derived from them, the load, and the peak resident memory
+TIMING = re.compile(r"(wall|cpu|time_loop|dof_updates|seconds|_s$|elapsed|load|peak_rss)", re.I)
 SKIPPED = re.compile(r"(^|/)checkpoints/|\.tmp$|\.log$|(^|/)(times\.txt|benchmark\.json)$")
 
 
