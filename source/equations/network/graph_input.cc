@@ -460,6 +460,7 @@ namespace granular_dg::network
                 at + "to", table.get(row, "to"),
                 "a vertex other than from: write loop for a roundabout");
         e.length = csv_number(table.get(row, "length"), at, "length");
+        require(e.length > 0, at + "length", table.get(row, "length"), "must be > 0");
         const std::string law = table.get(row, "flux"), p = table.get(row, "parameter");
         const FluxFunction f =
           make_flux(law, p.empty() ? 1. : csv_number(p, at, "parameter"), at, "parameter");
