@@ -144,16 +144,16 @@ def network(directory, png, time=None):
     scalar_bar(lut, plane, 'u', Position=[0.88, 0.08], ScalarBarLength=0.4, Visibility=1)
     coloured(vertices, plane, 'u')
     title(plane, 't = %g' % time, 14, 'Upper Left Corner')
-    camera(plane, [0, 0, 6], [0, 0, 0], [0, 1, 0], 1.2)
     # right: u as height above the plane, over the network in grey
     height = white_view([900, 700], layout, 2, time=time)
     warped = WarpByScalar(Input=lines, Scalars=['POINTS', 'u'], ScaleFactor=0.35)
     coloured(Tube(Input=warped, Radius=0.012, NumberofSides=12), height, 'u')
     Show(tubes, height, DiffuseColor=[0.75] * 3, AmbientColor=[0.75] * 3, ColorArrayName=[None, ''])
-    camera(height, [0.6, -5.0, 1.6], [0, 0, 0.3], [0, 0, 1], 1.5)
     lut.RescaleTransferFunction(*u_range)  # showing can rescale; fix it again
-    Render(plane)
+    Render(plane)  # the first render resets the camera: set ours after it
     Render(height)
+    camera(plane, [0, 0, 6], [0, 0, 0], [0, 1, 0], 1.2)
+    camera(height, [0.6, -5.0, 1.6], [0, 0, 0.3], [0, 0, 1], 1.3)
     save(png, layout, [1800, 700])
 
 
