@@ -3,14 +3,14 @@
 
     /usr/bin/python3 contrib/compare_runs.py BEFORE_DIR AFTER_DIR [--tolerance 1e-13]
 
-Every CSV and JSON file of BEFORE must exist in AFTER with the same columns/keys and
+The two must hold the same CSV, JSON, VTU and prm files, with the same columns/keys and
 numbers equal to within the tolerance (what measures the process is skipped: wall and
-CPU times, the rates derived from them, the load, the peak RSS): CSV numbers relative
-to the largest magnitude of their column, JSON numbers relative to themselves.
-VTU/PVD/PVTU files are compared byte for byte, parameters.prm but for the output
-directory. Prints one line per file that differs, the largest relative difference, and
-a verdict: 'bitwise' (every compared file identical to the letter, those aside), 'within
-TOL', or 'DIFFERENT' (exit code 1).
+CPU times, the rates derived from them, the peak RSS, the step a run resumed from): CSV
+numbers relative to the largest magnitude of their column, JSON numbers relative to
+themselves. VTU/PVD/PVTU files are compared byte for byte, parameters.prm but for the
+output directory. Prints one line per file that differs, the largest relative
+difference, and a verdict: 'bitwise' (every compared file identical to the letter,
+those aside), 'within TOL', or 'DIFFERENT' (exit code 1).
 """
 import sys
 

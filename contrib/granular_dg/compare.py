@@ -12,9 +12,9 @@ import numpy as np
 
 from .outputs import NUMBER, read_table
 
-# what measures the process rather than the solution: wall and CPU times, the
-# rates derived from them, the load, and the peak resident memory
-TIMING = re.compile(r"(wall|cpu|time_loop|dof_updates|seconds|_s$|elapsed|load|peak_rss)", re.I)
+# keys and columns, by whole name, that measure the process: times (NAME_s), rates, peak
+# memory, the step a run resumed from (physics such as wall_work stays compared)
+TIMING = re.compile(r"^(\w*_s|dof_updates\w*|peak_rss\w*|resumed_from_step)$")
 SKIPPED = re.compile(r"(^|/)checkpoints/|\.tmp$|\.log$|(^|/)(times\.txt|benchmark\.json)$")
 
 
@@ -74,7 +74,8 @@ def file_difference(a, b, diffs):
     """(largest difference, identical to the letter but for timings) of two files."""
     if a.endswith(".json"):
         ta, tb = Path(a).read_text(), Path(b).read_text()
-        untimed = [[l for l in t.splitlines() if not TIMING.search(l.split(":")[0])] for t in (ta, tb)]
+        untimed = [[l for l in t.splitlines() if not TIMING.search(l.split(":")[0].strip().strip('"'))]
+                   for t in (ta, tb)]
         return json_difference(json.loads(ta), json.loads(tb), "", diffs), untimed[0] == untimed[1]
     if a.endswith(".csv"):
         worst = csv_difference(a, b, diffs)
@@ -90,24 +91,24 @@ def file_difference(a, b, diffs):
 
 
 def compare_trees(before, after, tol=1e-13):
-    """Every CSV, JSON, VTU/PVTU/PVD and prm file of BEFORE against AFTER: the
-    lines to print and whether they agree (within tol)."""
+    """Every CSV, JSON, VTU/PVTU/PVD and prm file of BEFORE and AFTER compared: the lines
+    to print and whether they agree (within tol)."""
+    def files(top):
+        return {os.path.relpath(os.path.join(root, name), top) for root, _, names in os.walk(top) for name in names
+                if name.endswith((".csv", ".json", ".vtu", ".pvtu", ".pvd", ".prm"))}
     lines, bad, worst_all, n, bitwise = [], [], 0.0, 0, True
-    for root, _, names in sorted(os.walk(before)):
-        for name in sorted(names):
-            r = os.path.relpath(os.path.join(root, name), before)
-            if SKIPPED.search(r) or not name.endswith((".csv", ".json", ".vtu", ".pvtu", ".pvd", ".prm")):
-                continue
-            if not os.path.exists(os.path.join(after, r)):
-                bad.append("%s: missing after" % r)
-                continue
-            diffs = []
-            worst, same = file_difference(os.path.join(before, r), os.path.join(after, r), diffs)
-            n, worst_all, bitwise = n + 1, max(worst_all, worst), bitwise and same
-            if worst > tol or (diffs and not name.endswith(".vtu")):
-                bad.append("; ".join(["%s: max rel diff %.3g" % (r, worst)] + diffs[:3]))
-            elif diffs:
-                lines.append("note %s: %s" % (r, "; ".join(diffs[:2])))
+    old, new = files(before), files(after)
+    for r in sorted(r for r in old | new if not SKIPPED.search(r)):
+        if r not in new or r not in old:
+            bad.append("%s: %s after" % (r, "missing" if r in old else "new"))
+            continue
+        diffs = []
+        worst, same = file_difference(os.path.join(before, r), os.path.join(after, r), diffs)
+        n, worst_all, bitwise = n + 1, max(worst_all, worst), bitwise and same
+        if worst > tol or (diffs and not r.endswith(".vtu")):
+            bad.append("; ".join(["%s: max rel diff %.3g" % (r, worst)] + diffs[:3]))
+        elif diffs:
+            lines.append("note %s: %s" % (r, "; ".join(diffs[:2])))
     verdict = "DIFFERENT" if bad else "bitwise" if bitwise else "within %g" % tol
     return lines + bad + ["%d files compared, max relative difference %.3g: %s" % (n, worst_all, verdict)], not bad
 

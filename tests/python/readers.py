@@ -195,6 +195,18 @@ def compare(d):
           not agree and lines[0].startswith("timeseries.csv: max rel diff 8.33e-12"), lines)
     lines, agree = compare_trees(d, "changed", 1e-10)
     check("and within 1e-10", agree and lines[-1].endswith(": within 1e-10"), lines[-1:])
+    for name, value in (("wall_a", "1.5"), ("wall_b", "2.5")):  # physics named like a time is compared
+        shutil.rmtree(name, ignore_errors=True)
+        shutil.copytree(d, name)
+        with open(name + "/summary.json", "w") as f:
+            f.write(summary.replace("{", '{\n  "wall_work": %s,' % value, 1))
+    lines, agree = compare_trees("wall_a", "wall_b")
+    check("a changed wall_work: DIFFERENT", not agree and lines[0].startswith("summary.json: max rel diff 0.4"),
+          lines)
+    with open("wall_b/extra.csv", "w") as f:
+        f.write("x\n1\n")
+    lines, agree = compare_trees("wall_a", "wall_b")
+    check("a file only AFTER has: DIFFERENT", not agree and "extra.csv: new after" in lines, lines)
 
 
 {"layered": layered, "network": network, "hopper": hopper, "convergence": convergence, "benchmark": benchmark,
