@@ -136,6 +136,10 @@ granular_dg_test(network/negative_length PRM ../prm/network_example_7_4.prm
   ARGS --set "Network/Edge 5/length=-1" EXIT 2 KEEP_OUTPUT)
 granular_dg_test(network/alpha_swap PRM ../prm/network_example_7_2.prm
   ARGS --set "Network/Edge 3/alpha=4" --set "Network/Edge 5/alpha=2" EXIT 2 KEEP_OUTPUT)
+# An example's exact solution lives on edges of length 1: another length would
+# measure the errors against the wrong solution.
+granular_dg_test(network/wrong_length PRM ../prm/network_example_7_5.prm
+  ARGS --set "Network/Edge 1/length=3" EXIT 2 KEEP_OUTPUT)
 granular_dg_test(network/wrong_initial_data PRM ../prm/network_example_7_5.prm
   ARGS --set "Network/Edge 1/initial data=if(x < 0.5, 2, 1)" EXIT 2 KEEP_OUTPUT)
 granular_dg_test(network/bad_vertex_value PRM ../prm/network_example_7_4.prm

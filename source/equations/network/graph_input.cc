@@ -398,6 +398,7 @@ namespace granular_dg::network
     flux.push_back(f);
     data.push_back(d);
     initial_text.push_back(initial);
+    far_end_text.push_back(far_end_data);
     where.push_back(at);
   }
 

@@ -107,7 +107,8 @@ namespace granular_dg::network
     }
 
     /// An example's exact solution is only used for the graph and data it
-    /// belongs to: the directions, fluxes, initial data and Dirichlet data.
+    /// belongs to: the directions, lengths (1), fluxes, initial data and
+    /// Dirichlet data.
     void
     check_example(const Example &ex, const Case &c, const double final_time)
     {
@@ -132,6 +133,7 @@ namespace granular_dg::network
           const std::string   why  = ", as " + ex.name + " expects (or set Network/exact solution = none)";
           require(e.from == want.from && e.to == want.to, sec + "direction",
                   graph.describe(k), graph.describe_ends(want.from, want.to) + why);
+          require(std::abs(e.length - 1.) <= 1e-12, sec + "length", e.length, "1" + why);
           require(f.law == want.flux.law, sec + "flux", flux_law_names.name(f.law),
                   flux_law_names.name(want.flux.law) + why);
           if (want.flux.law == FluxLaw::linear)
@@ -165,9 +167,10 @@ namespace granular_dg::network
                 const double given = c.input.data[k].far_end->value(Point<1>(0.));
                 const double exact = ex.exact->value(k, 0., t);
                 require(std::abs(given - exact) <= 1e-12 * std::max(1., std::abs(exact)),
-                        sec + "far end data", given,
+                        sec + "far end data", c.input.far_end_text[k],
                         "the inflow of " + ex.name + " (or set Network/exact solution = none): "
-                        "at t = " + number(t) + " it is " + number(exact));
+                        "at t = " + number(t) + " it gives " + number(given) + ", the example " +
+                          number(exact));
               }
         }
     }

@@ -66,9 +66,9 @@ namespace granular_dg::network
     /// per edge: its flux law and its data
     std::vector<FluxFunction> flux;
     std::vector<EdgeData>     data;
-    /// per edge: its initial data as written, and where it was given
-    /// ("Network/Edge 3/" or "Network/graph file 'grid.csv', line 4: ")
-    std::vector<std::string> initial_text;
+    /// per edge: its initial and far-end data as written, and where it was
+    /// given ("Network/Edge 3/" or "Network/graph file 'grid.csv', line 4: ")
+    std::vector<std::string> initial_text, far_end_text;
     std::vector<std::string> where;
 
     /// The graph's entries, each with its field, pattern and documentation
