@@ -33,3 +33,9 @@ foreach(scheme lsrk_5_4 lsrk_9_5)
          --set "Convergence/CFL numbers=0.6,0.3,0.2"
     COMPARE convergence-rates.csv:degree,eoc_finest,eoc_l1_finest NUMDIFF -a 0.1)
 endforeach()
+
+# A single run writes its VTU snapshots (deal.II hands the values of a system
+# of one component to the derived fields' scalar path)
+granular_dg_test(skeleton/run_1d PRM skeleton/base.prm
+  EXPECT_FILES out/solution.pvd out/solution-0001.vtu
+  COMPARE summary.json:status,final_time NUMDIFF -r 1e-12)

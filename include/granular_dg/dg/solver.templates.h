@@ -41,15 +41,27 @@ namespace granular_dg::dg
       evaluate_vector_field(const DataPostprocessorInputs::Vector<dim> &inputs,
                             std::vector<Vector<double>> &computed) const override
       {
+        const auto material = inputs.template get_cell<dim>()->material_id();
         for (unsigned int q = 0; q < inputs.solution_values.size(); ++q)
           {
             Tensor<1, Physics::n_components> U;
             for (unsigned int c = 0; c < Physics::n_components; ++c)
               U[c] = inputs.solution_values[q][c];
-            const auto d = physics.derived(
-              U, physics.coefficients(inputs.template get_cell<dim>()->material_id()));
-            for (unsigned int i = 0; i < d.size(); ++i)
-              computed[q][i] = d[i];
+            evaluate(U, material, computed[q]);
+          }
+      }
+
+      /// (deal.II calls this one for a system of one component)
+      void
+      evaluate_scalar_field(const DataPostprocessorInputs::Scalar<dim> &inputs,
+                            std::vector<Vector<double>> &computed) const override
+      {
+        const auto material = inputs.template get_cell<dim>()->material_id();
+        for (unsigned int q = 0; q < inputs.solution_values.size(); ++q)
+          {
+            Tensor<1, Physics::n_components> U;
+            U[0] = inputs.solution_values[q];
+            evaluate(U, material, computed[q]);
           }
       }
 
@@ -66,6 +78,15 @@ namespace granular_dg::dg
       }
 
     private:
+      void
+      evaluate(const Tensor<1, Physics::n_components> &U, const types::material_id material,
+               Vector<double> &computed) const
+      {
+        const auto d = physics.derived(U, physics.coefficients(material));
+        for (unsigned int i = 0; i < d.size(); ++i)
+          computed[i] = d[i];
+      }
+
       const Physics physics;
     };
 
