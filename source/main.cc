@@ -63,7 +63,11 @@ namespace
         else if (std::regex_search(line, end))
           --depth;
         else if (depth == 0 && std::regex_match(line, match, pattern))
-          name = match[1];
+          {
+            require(name.empty() || name == match[1].str(), "scene", match[1].str(),
+                    "one scene per file: " + filename + " sets scene = " + name + " before");
+            name = match[1];
+          }
       }
     if (!override_name.empty())
       {

@@ -1,4 +1,5 @@
 #include <deal.II/base/exceptions.h>
+#include <deal.II/base/mpi.h>
 #include <deal.II/lac/vector.h>
 
 #include <granular_dg/base/input_path.h>
@@ -167,17 +168,27 @@ namespace granular_dg
       return line >= 1 && line <= lines.size() ? lines[line - 1].first : "";
     }
 
-    /// set_parameter_origin() for every entry the file sets: "FILE line N".
+    /// set_parameter_origin() for every entry the file sets: "FILE line N";
+    /// a warning (rank 0) for an entry set twice, whose last value counts.
     void
     record_parameter_origins(const std::string &filename)
     {
       const std::regex set(R"(^\s*set\s+(.*\S)\s*=.*$)");
       std::smatch      m;
       const auto       lines = lines_with_sections(filename);
+      std::map<std::string, unsigned int> first;
+      const bool root = !Utilities::MPI::job_supports_mpi() ||
+                        Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) == 0;
       for (unsigned int n = 0; n < lines.size(); ++n)
         if (std::regex_match(lines[n].second, m, set))
-          set_parameter_origin(lines[n].first + m[1].str(),
-                               filename + " line " + std::to_string(n + 1));
+          {
+            const std::string name = lines[n].first + m[1].str();
+            if (const auto [at, fresh] = first.emplace(name, n + 1); !fresh && root)
+              std::cerr << "granular_dg: warning: '" << name << "' is set twice in " << filename
+                        << " (lines " << at->second << " and " << n + 1
+                        << "): the last value counts" << std::endl;
+            set_parameter_origin(name, filename + " line " + std::to_string(n + 1));
+          }
     }
 
     /// Turns ParameterHandler's messages into our one-line form naming the
@@ -260,6 +271,7 @@ namespace granular_dg
   {
     require_readable_parameter_file(filename);
     set_parameter_file(filename);
+    record_parameter_origins(filename);
     try
       {
         // undeclared entries are errors: a typo must never be ignored
@@ -270,7 +282,6 @@ namespace granular_dg
         throw InputError(
           translate_parameter_error(one_line_message(e), filename, ""));
       }
-    record_parameter_origins(filename);
 
     for (const auto &o : overrides)
       {
