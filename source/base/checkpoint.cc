@@ -467,14 +467,6 @@ namespace granular_dg
 
   namespace
   {
-    /// A RunError if a write to the checkpoint's temporary file failed.
-    void
-    require_written(const std::ofstream &out, const fs::path &tmp)
-    {
-      if (!out)
-        throw RunError("cannot write checkpoint " + tmp.string() + " (disk full or not writable)");
-    }
-
     /// Rank 0: the header and the payload into a new file; returns where the
     /// shared blocks begin.
     std::uint64_t
@@ -503,7 +495,7 @@ namespace granular_dg
       out << '\n' << "payload " << payload.bytes.size() << ' ' << hex(fnv1a(payload.bytes)) << '\n';
       out.write(payload.bytes.data(), payload.bytes.size());
       out.flush();
-      require_written(out, tmp);
+      require_written(out, tmp.string());
       return static_cast<std::uint64_t>(out.tellp());
     }
 
@@ -570,7 +562,7 @@ namespace granular_dg
           }
         out << '\n';
         out.flush();
-        require_written(out, tmp);
+        require_written(out, tmp.string());
       }
       std::error_code ec;
       fs::rename(tmp, file);
@@ -583,18 +575,6 @@ namespace granular_dg
           fs::remove(entry.path(), ec);
     }
 
-    /// An error on any rank, as one message on every rank ("" if none).
-    std::string
-    agree_on_error(const MPI_Comm comm, std::string error)
-    {
-      if (Utilities::MPI::n_mpi_processes(comm) == 1)
-        return error;
-      const unsigned int rank   = Utilities::MPI::this_mpi_process(comm);
-      const unsigned int failed = Utilities::MPI::min(error.empty() ? ~0u : rank, comm);
-      if (failed == ~0u)
-        return "";
-      return Utilities::MPI::broadcast(comm, error, failed);
-    }
   } // namespace
 
   std::string

@@ -42,12 +42,17 @@ namespace granular_dg
     write_file_atomically(const std::string &filename, const std::string &content)
     {
       const std::string tmp = filename + ".tmp";
-      {
-        std::ofstream out(tmp);
-        out << content;
-      }
+      claim_output_file(filename);
+      std::ofstream out(tmp);
+      out << content;
+      out.close();
+      if (!out)
+        {
+          std::error_code ec;
+          fs::remove(tmp, ec);
+          require_written(out, filename);
+        }
       fs::rename(tmp, filename);
-      record_output_file(filename);
     }
 
     std::string
@@ -75,6 +80,25 @@ namespace granular_dg
       return std::isfinite(x) ? format_number(x) : quoted(format_number(x));
     }
   } // namespace
+
+  void
+  require_written(const std::ostream &out, const std::string &filename)
+  {
+    if (!out)
+      throw RunError("cannot write " + filename + " (disk full or not writable)");
+  }
+
+  std::string
+  agree_on_error(const MPI_Comm comm, std::string error)
+  {
+    if (Utilities::MPI::n_mpi_processes(comm) == 1)
+      return error;
+    const unsigned int rank   = Utilities::MPI::this_mpi_process(comm);
+    const unsigned int failed = Utilities::MPI::min(error.empty() ? ~0u : rank, comm);
+    if (failed == ~0u)
+      return "";
+    return Utilities::MPI::broadcast(comm, error, failed);
+  }
 
   void
   JsonObject::add(const std::string &key, const double value)
@@ -140,14 +164,16 @@ namespace granular_dg
                   const std::vector<std::string> &header,
                   const std::string              &comment)
   {
+    name = filename;
+    claim_output_file(filename);
     out.open(filename);
-    record_output_file(filename);
     if (!comment.empty())
       out << "# " << comment << '\n';
     for (unsigned int i = 0; i < header.size(); ++i)
       out << (i ? "," : "") << header[i];
     out << '\n';
     out.flush();
+    require_written(out, name);
   }
 
   void
@@ -157,6 +183,7 @@ namespace granular_dg
       out << (i ? "," : "") << format_number(values[i]);
     out << '\n';
     out.flush();
+    require_written(out, name);
   }
 
   std::uint64_t
@@ -182,7 +209,9 @@ namespace granular_dg
   CsvWriter::reopen(const std::string &filename, const std::uint64_t size)
   {
     truncate_file(filename, size);
+    name = filename;
     out.open(filename, std::ios::app);
+    require_written(out, name);
   }
 
   namespace
@@ -292,6 +321,25 @@ namespace granular_dg
       for (const auto &name : read_manifest(root))
         m.names.insert(name);
     m.file.open(root / manifest_name, continue_existing ? std::ios::app : std::ios::trunc);
+  }
+
+  void
+  claim_output_file(const std::string &path)
+  {
+    const fs::path file = fs::absolute(path).lexically_normal();
+    for (auto &[root, m] : manifests())
+      {
+        const std::string rel = file.lexically_relative(root).string();
+        std::error_code   ec;
+        if (rel.empty() || rel.rfind("..", 0) == 0 || m.names.count(rel) || !fs::exists(file, ec))
+          continue;
+        throw RunError("the output directory " + root.string() + " holds " + rel +
+                       ", which this run would overwrite but no run of granular_dg wrote (the "
+                       "directory's manifest does not list it): move it away or choose another "
+                       "Output/directory");
+      }
+    // listed before it exists: a run killed while writing it leaves it listed
+    record_output_file(path);
   }
 
   void
@@ -438,9 +486,11 @@ namespace granular_dg
     else if (seconds < 3600)
       s << int(seconds / 60) << " min " << std::setw(2) << std::setfill('0')
         << int(seconds) % 60 << " s";
-    else
+    else if (seconds < 3600e6)
       s << int(seconds / 3600) << " h " << std::setw(2) << std::setfill('0')
-        << int(seconds / 60) % 60 << " min";
+        << int(std::fmod(seconds / 60, 60.)) << " min";
+    else // (beyond int's hours)
+      s << format_number(seconds / 3600) << " h";
     return s.str();
   }
 

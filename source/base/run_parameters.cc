@@ -317,11 +317,15 @@ namespace granular_dg
             error = e.what();
           }
         if (error.empty() && !params.benchmark.enabled)
-          {
-            std::ofstream out(params.directory + "/parameters.prm");
-            out << params.parameters_text;
-            record_output_file(params.directory, "parameters.prm");
-          }
+          try
+            {
+              write_to_file(params.directory + "/parameters.prm",
+                            [&](std::ostream &out) { out << params.parameters_text; });
+            }
+          catch (const RunError &e)
+            {
+              error = e.what();
+            }
       }
     // the other ranks write into the directory only after it exists
     error = Utilities::MPI::broadcast(MPI_COMM_WORLD, error, 0);

@@ -286,26 +286,50 @@ namespace granular_dg
     if (!write_files)
       return;
     TimerOutput::Scope scope(*timer, "output");
-    const auto files = problem.write_snapshot(params.directory, n_snapshots++, t);
-    last_record_time = t;
-    last_main_file   = files.main_file;
-    if (!files.pvd_entry.empty())
+    // a file that cannot be written, on any rank, stops every rank (after
+    // the collective parts: the snapshot, then the time series' values)
+    std::string error;
+    const auto  agree = [&] {
+      if (!(error = agree_on_error(MPI_COMM_WORLD, error)).empty())
+        throw RunError(error + " at " + info.time_name + " = " + format_number(t));
+    };
+    SnapshotFiles files;
+    last_record_time = t; // (on every rank, also if a write fails: no retry)
+    try
       {
-        snapshots.emplace_back(t, files.pvd_entry);
-        if (root)
-          write_pvd(params.directory + "/solution.pvd", snapshots);
+        files          = problem.write_snapshot(params.directory, n_snapshots++, t);
+        last_main_file = files.main_file;
       }
-    if (!files.xdmf_entry.empty())
+    catch (const RunError &e)
       {
-        xdmf_grids.push_back(files.xdmf_entry);
-        if (root)
-          write_xdmf(params.directory + "/solution.xdmf", xdmf_grids);
+        error = e.what();
       }
+    agree();
     std::vector<double> row{t, double(step), dt};
     for (const double v : problem.timeseries_values(t))
       row.push_back(v);
-    if (root)
-      timeseries.row(row);
+    try
+      {
+        if (!files.pvd_entry.empty())
+          {
+            snapshots.emplace_back(t, files.pvd_entry);
+            if (root)
+              write_pvd(params.directory + "/solution.pvd", snapshots);
+          }
+        if (!files.xdmf_entry.empty())
+          {
+            xdmf_grids.push_back(files.xdmf_entry);
+            if (root)
+              write_xdmf(params.directory + "/solution.xdmf", xdmf_grids);
+          }
+        if (root)
+          timeseries.row(row);
+      }
+    catch (const RunError &e)
+      {
+        error = e.what();
+      }
+    agree();
   }
 
   bool
@@ -351,39 +375,55 @@ namespace granular_dg
   {
     std::string msg = describe(failure, info.time_name, step);
     result.status   = "failed: " + msg;
-    if (write_files && failure.initial)
-      msg += "; initial state written to " + params.directory + "/";
-    else if (write_files)
-      {
-        problem.restore(Evolution::Slot::last_good);
-        if (last_record_time != t)
-          record();
-        msg += "; last good state (" + info.time_name + " = " + format_number(t) +
-               ") written to " + params.directory + "/" +
-               (last_main_file.empty() ? "summary.json only (Output/write vtu = false)" :
-                                         last_main_file);
-      }
-    record_end();
-    problem.finish(t, result, write_files);
-    if (write_files)
-      write_summary();
-    timer.reset();
-    throw RunError(msg);
+    const auto written = [&] {
+      if (write_files && failure.initial)
+        msg += "; initial state written to " + params.directory + "/";
+      else if (write_files)
+        {
+          problem.restore(Evolution::Slot::last_good);
+          if (last_record_time != t)
+            record();
+          msg += "; last good state (" + info.time_name + " = " + format_number(t) +
+                 ") written to " + params.directory + "/" +
+                 (last_main_file.empty() ? "summary.json only (Output/write vtu = false)" :
+                                           last_main_file);
+        }
+    };
+    const std::string then = finish_failed(written); // (appends to msg first)
+    throw RunError(msg + then);
   }
 
   void
   TimeLoop::fail(const RunError &e)
   {
     result.status = std::string("failed: ") + e.what();
-    record_end();
     problem.restore(Evolution::Slot::last_good);
-    if (write_files && last_record_time != t)
-      record();
-    problem.finish(t, result, write_files);
-    if (write_files)
-      write_summary();
+    throw RunError(e.what() + finish_failed([&] {
+                     if (write_files && last_record_time != t)
+                       record();
+                   }));
+  }
+
+  template <typename WriteState>
+  std::string
+  TimeLoop::finish_failed(const WriteState &write_state)
+  {
+    std::string then;
+    try
+      {
+        write_state();
+        record_end();
+        problem.finish(t, result, write_files);
+        if (write_files)
+          write_summary();
+      }
+    catch (const RunError &also)
+      {
+        // (a file that cannot be written either: say so after the cause)
+        then = std::string("; then: ") + also.what();
+      }
     timer.reset();
-    throw e;
+    return then;
   }
 
   RunResult
@@ -395,7 +435,15 @@ namespace granular_dg
     result.wall_time_s = wall_timer.wall_time();
     if (!write_files)
       return result;
-    write_summary();
+    try
+      {
+        write_summary();
+      }
+    catch (const RunError &)
+      {
+        timer.reset(); // (its destructor would warn of the exception)
+        throw;
+      }
     if (root)
       std::cout << "  completed " << step << " steps to " << info.time_name << " = "
                 << format_number(t) << " in " << format_duration(result.wall_time_s) << " ("
@@ -506,7 +554,17 @@ namespace granular_dg
   void
   TimeLoop::write_summary() const
   {
-    granular_dg::write_summary(params.directory, info, result);
+    std::string error;
+    try
+      {
+        granular_dg::write_summary(params.directory, info, result);
+      }
+    catch (const RunError &e)
+      {
+        error = e.what();
+      }
+    if (!(error = agree_on_error(MPI_COMM_WORLD, error)).empty())
+      throw RunError(error);
   }
 
   void

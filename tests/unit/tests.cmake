@@ -52,3 +52,8 @@ granular_dg_unit_test(unit/line_batches NUMDIFF -a 0 -r 0)
 # characteristic, periodic advection componentwise; degrees 1-4, smooth and
 # rough cells, so both outcomes occur). Fails itself otherwise.
 granular_dg_unit_test(unit/limiter_batches NUMDIFF -a 0 -r 0)
+# The writers on a full disk (/dev/full) and beside a user's files: a
+# RunError naming the file instead of a silent success, and a file the output
+# directory's manifest does not list refused before it is touched. Fails
+# itself otherwise.
+granular_dg_unit_test(unit/output_files NUMDIFF -a 0 -r 0)

@@ -1,5 +1,7 @@
 #pragma once
 
+#include <mpi.h>
+
 #include <chrono>
 #include <cstdint>
 #include <fstream>
@@ -12,6 +14,45 @@ namespace granular_dg
   /// Numbers in every file the program writes: 12 significant digits.
   std::string
   format_number(double x);
+
+  /// A RunError naming filename if out failed ("cannot write FILE (disk
+  /// full or not writable)").
+  void
+  require_written(const std::ostream &out, const std::string &filename);
+
+  /// Before this run creates path in its output directory (rank 0): a
+  /// RunError if a file is there that neither this run nor the earlier run
+  /// it continues or replaces wrote (not in the manifest): a user's file is
+  /// never overwritten. Then path is recorded (record_output_file()).
+  void
+  claim_output_file(const std::string &path);
+
+  /// Write filename by write(std::ostream &) and close it (claimed first);
+  /// a RunError naming the file if that fails (a full disk: deal.II's
+  /// writers throw ExcIO then, a plain stream only fails).
+  template <typename Write>
+  void
+  write_to_file(const std::string &filename, const Write &write)
+  {
+    claim_output_file(filename);
+    std::ofstream out(filename);
+    try
+      {
+        write(out);
+        out.close();
+      }
+    catch (...)
+      {
+        if (out)
+          throw;
+      }
+    require_written(out, filename);
+  }
+
+  /// An error message of any rank of comm as one message on every rank (the
+  /// lowest failed rank's; "" if none): collective.
+  std::string
+  agree_on_error(MPI_Comm comm, std::string error);
 
   /// A flat JSON object with keys in insertion order (summary.json).
   class JsonObject
@@ -53,6 +94,7 @@ namespace granular_dg
 
   private:
     std::ofstream out;
+    std::string   name;
   };
 
   /// Cut filename to size bytes (an appended file continued by a resumed
@@ -83,8 +125,9 @@ namespace granular_dg
   /// Note in the manifest of the run writing to the directory begun last
   /// (prepare_output_directory() or begin_manifest()) that this run created
   /// path (a file under that directory; others are ignored). Rank 0 only;
-  /// every writer of this program calls it (CsvWriter, JsonObject, PVD,
-  /// snapshots).
+  /// every writer of this program calls it, through claim_output_file()
+  /// (CsvWriter, JsonObject, PVD, write_to_file()) or for the other ranks'
+  /// snapshot pieces.
   void
   record_output_file(const std::string &path);
   void

@@ -85,6 +85,12 @@ namespace granular_dg
     fail(const Inadmissible &failure);
     [[noreturn]] void
     fail(const RunError &error);
+    /// A failed run's end: write_state() (the last good state), the run's
+    /// end in result, the problem's last words and summary.json; "" or, if a
+    /// file cannot be written, "; then: " and why.
+    template <typename WriteState>
+    std::string
+    finish_failed(const WriteState &write_state);
     RunResult
     complete();
     /// The run's end in result, however it ends: steps, time, wall time and

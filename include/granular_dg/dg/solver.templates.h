@@ -765,17 +765,12 @@ namespace granular_dg::dg
     if (n_ranks == 1)
       {
         const std::string name = internal::snapshot_name("solution-", index, ".vtu");
-        std::ofstream     out(directory + "/" + name);
-        data_out.write_vtu(out);
-        record_output_file(directory, name);
+        write_to_file(directory + "/" + name, [&](std::ostream &out) { data_out.write_vtu(out); });
         return name;
       }
     const std::string base = internal::snapshot_name("solution-", index, "");
-    {
-      std::ofstream out(directory + "/" + base + "." + Utilities::int_to_string(rank, 4) +
-                        ".vtu");
-      data_out.write_vtu(out);
-    }
+    write_to_file(directory + "/" + base + "." + Utilities::int_to_string(rank, 4) + ".vtu",
+                  [&](std::ostream &out) { data_out.write_vtu(out); });
     if (rank == 0)
       {
         std::vector<std::string> pieces;

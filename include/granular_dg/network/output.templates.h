@@ -110,8 +110,9 @@ namespace granular_dg::network
                                        {{{vertices[v], 0., 0., 0.}}, {{vertices[v], 0., 0., 0.}}},
                                        patches.size()));
         }
-    std::ofstream out(directory + "/" + name);
-    DataOutBase::write_vtu(patches, internal::vtu_fields, {}, internal::vtu_flags(time, index), out);
+    write_to_file(directory + "/" + name, [&](std::ostream &out) {
+      DataOutBase::write_vtu(patches, internal::vtu_fields, {}, internal::vtu_flags(time, index), out);
+    });
   }
 
   template <typename Law>
@@ -195,7 +196,6 @@ namespace granular_dg::network
     if (one_file)
       {
         write_vtu(directory, base + ".vtu", index, time, std::move(vtu_samples), vertices);
-        record_output_file(directory, base + ".vtu");
         files.pvd_entry = files.main_file = base + ".vtu";
         return files;
       }

@@ -93,9 +93,9 @@ namespace granular_dg::hopper
       DataOutBase::VtkFlags flags;
       flags.print_date_and_time = false;
       flags.compression_level   = DataOutBase::VtkFlags::best_speed;
-      std::ofstream out(directory + "/hopper-field.vtu");
-      DataOutBase::write_vtu(patches, names, {}, flags, out);
-      record_output_file(directory, "hopper-field.vtu");
+      write_to_file(directory + "/hopper-field.vtu", [&](std::ostream &out) {
+        DataOutBase::write_vtu(patches, names, {}, flags, out);
+      });
     }
 
     /**
