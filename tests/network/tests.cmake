@@ -223,6 +223,10 @@ foreach(bad missing_vertex isolated_vertex)
     COPY network/ring.csv network/ring_${bad}.csv
     ARGS --set "Network/vertex file=ring_${bad}.csv" EXIT 2 KEEP_OUTPUT)
 endforeach()
+# A graph file that is not a regular file (a device that never ends, such as
+# /dev/zero, or a directory) is refused instead of read.
+granular_dg_test(network/graph_not_a_file PRM network/ring.prm
+  ARGS --set "Network/graph file=/dev/zero" EXIT 2 KEEP_OUTPUT)
 # Graph and vertex files saved as "CSV UTF-8" (a byte-order mark, CRLF line
 # ends, no comment line) read as the plain ring: the run completes with the
 # ring's cells, vertices and final vertex values (1e-12 relative).

@@ -14,6 +14,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <filesystem>
 #include <fstream>
 #include <map>
 #include <sstream>
@@ -195,7 +196,9 @@ namespace granular_dg::network
     {
       const std::string path = resolve_input_path(file);
       std::ifstream     in(path);
-      require(static_cast<bool>(in), parameter, file,
+      std::error_code   ec;
+      // (a directory opens too, and a device such as /dev/zero never ends)
+      require(in && std::filesystem::is_regular_file(path, ec), parameter, file,
               "a readable CSV file (relative paths are relative to the parameter file: " + path +
                 ")");
       std::ostringstream content;
