@@ -140,6 +140,10 @@ granular_dg_test(network/alpha_swap PRM ../prm/network_example_7_2.prm
 # measure the errors against the wrong solution.
 granular_dg_test(network/wrong_length PRM ../prm/network_example_7_5.prm
   ARGS --set "Network/Edge 1/length=3" EXIT 2 KEEP_OUTPUT)
+# An edge given by from/to that is not the example's is blamed on the entry
+# the user set (from), not on direction.
+granular_dg_test(network/wrong_from PRM ../prm/network_two_stars.prm
+  ARGS --set "Network/Edge 4/from=1" EXIT 2 KEEP_OUTPUT)
 granular_dg_test(network/wrong_initial_data PRM ../prm/network_example_7_5.prm
   ARGS --set "Network/Edge 1/initial data=if(x < 0.5, 2, 1)" EXIT 2 KEEP_OUTPUT)
 granular_dg_test(network/bad_vertex_value PRM ../prm/network_example_7_4.prm

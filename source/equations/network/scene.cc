@@ -131,8 +131,15 @@ namespace granular_dg::network
           const auto         &want = ex.edges[k];
           const std::string  &sec  = c.input.where[k];
           const std::string   why  = ", as " + ex.name + " expects (or set Network/exact solution = none)";
-          require(e.from == want.from && e.to == want.to, sec + "direction",
-                  graph.describe(k), graph.describe_ends(want.from, want.to) + why);
+          // (named by the entry the user set: direction, else from or to)
+          const auto label = [&](const unsigned int v) {
+            return v == free_end ? std::string("free") : graph.vertices[v].label;
+          };
+          if (!parameter_origin(sec + "direction").empty())
+            require(e.from == want.from && e.to == want.to, sec + "direction",
+                    graph.describe(k), graph.describe_ends(want.from, want.to) + why);
+          require(e.from == want.from, sec + "from", label(e.from), label(want.from) + why);
+          require(e.to == want.to, sec + "to", label(e.to), label(want.to) + why);
           require(std::abs(e.length - 1.) <= 1e-12, sec + "length", e.length, "1" + why);
           require(f.law == want.flux.law, sec + "flux", flux_law_names.name(f.law),
                   flux_law_names.name(want.flux.law) + why);
