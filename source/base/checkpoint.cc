@@ -574,7 +574,6 @@ namespace granular_dg
         if (is_partial_checkpoint(entry.path().filename().string()))
           fs::remove(entry.path(), ec);
     }
-
   } // namespace
 
   std::string

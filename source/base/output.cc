@@ -46,12 +46,10 @@ namespace granular_dg
       std::ofstream out(tmp);
       out << content;
       out.close();
+      std::error_code ec;
       if (!out)
-        {
-          std::error_code ec;
-          fs::remove(tmp, ec);
-          require_written(out, filename);
-        }
+        fs::remove(tmp, ec);
+      require_written(out, filename);
       fs::rename(tmp, filename);
     }
 
@@ -82,9 +80,9 @@ namespace granular_dg
   } // namespace
 
   void
-  require_written(const std::ostream &out, const std::string &filename)
+  require_written(const bool written, const std::string &filename)
   {
-    if (!out)
+    if (!written)
       throw RunError("cannot write " + filename + " (disk full or not writable)");
   }
 

@@ -15,10 +15,15 @@ namespace granular_dg
   std::string
   format_number(double x);
 
-  /// A RunError naming filename if out failed ("cannot write FILE (disk
-  /// full or not writable)").
+  /// A RunError naming filename if out failed, or written is false
+  /// ("cannot write FILE (disk full or not writable)").
   void
-  require_written(const std::ostream &out, const std::string &filename);
+  require_written(bool written, const std::string &filename);
+  inline void
+  require_written(const std::ostream &out, const std::string &filename)
+  {
+    require_written(static_cast<bool>(out), filename);
+  }
 
   /// Before this run creates path in its output directory (rank 0): a
   /// RunError if a file is there that neither this run nor the earlier run

@@ -41,14 +41,7 @@ namespace granular_dg::dg
       evaluate_vector_field(const DataPostprocessorInputs::Vector<dim> &inputs,
                             std::vector<Vector<double>> &computed) const override
       {
-        const auto material = inputs.template get_cell<dim>()->material_id();
-        for (unsigned int q = 0; q < inputs.solution_values.size(); ++q)
-          {
-            Tensor<1, Physics::n_components> U;
-            for (unsigned int c = 0; c < Physics::n_components; ++c)
-              U[c] = inputs.solution_values[q][c];
-            evaluate(U, material, computed[q]);
-          }
+        evaluate(inputs, computed);
       }
 
       /// (deal.II calls this one for a system of one component)
@@ -56,13 +49,7 @@ namespace granular_dg::dg
       evaluate_scalar_field(const DataPostprocessorInputs::Scalar<dim> &inputs,
                             std::vector<Vector<double>> &computed) const override
       {
-        const auto material = inputs.template get_cell<dim>()->material_id();
-        for (unsigned int q = 0; q < inputs.solution_values.size(); ++q)
-          {
-            Tensor<1, Physics::n_components> U;
-            U[0] = inputs.solution_values[q];
-            evaluate(U, material, computed[q]);
-          }
+        evaluate(inputs, computed);
       }
 
       std::vector<std::string>
@@ -78,13 +65,35 @@ namespace granular_dg::dg
       }
 
     private:
+      /// The derived fields at the points of inputs (their solution_values:
+      /// a value per point for one component, else a vector per point).
+      template <typename Inputs>
       void
-      evaluate(const Tensor<1, Physics::n_components> &U, const types::material_id material,
-               Vector<double> &computed) const
+      evaluate(const Inputs &inputs, std::vector<Vector<double>> &computed) const
       {
-        const auto d = physics.derived(U, physics.coefficients(material));
-        for (unsigned int i = 0; i < d.size(); ++i)
-          computed[i] = d[i];
+        const auto coefficients =
+          physics.coefficients(inputs.template get_cell<dim>()->material_id());
+        for (unsigned int q = 0; q < inputs.solution_values.size(); ++q)
+          {
+            Tensor<1, Physics::n_components> U;
+            for (unsigned int c = 0; c < Physics::n_components; ++c)
+              U[c] = component(inputs.solution_values[q], c);
+            const auto d = physics.derived(U, coefficients);
+            for (unsigned int i = 0; i < d.size(); ++i)
+              computed[q][i] = d[i];
+          }
+      }
+
+      static double
+      component(const double value, const unsigned int)
+      {
+        return value;
+      }
+
+      static double
+      component(const Vector<double> &values, const unsigned int c)
+      {
+        return values[c];
       }
 
       const Physics physics;

@@ -2,7 +2,6 @@
 #include <deal.II/lac/full_matrix.h>
 #include <deal.II/lac/vector.h>
 
-#include <granular_dg/base/errors.h>
 #include <granular_dg/base/output.h>
 #include <granular_dg/equations/column/diagnostics.h>
 
@@ -72,8 +71,7 @@ namespace granular_dg::column
           {
             claim_output_file(directory + "/sgn-map.csv");
             sgn_map_file = std::fopen((directory + "/sgn-map.csv").c_str(), "w");
-            if (!sgn_map_file)
-              throw RunError("cannot write " + directory + "/sgn-map.csv (not writable)");
+            require_written(sgn_map_file != nullptr, directory + "/sgn-map.csv");
             std::fprintf(sgn_map_file,
                          "# sgn(v) per cell (columns: cell centres z), one row per sample time\n");
             std::fprintf(sgn_map_file, "time");
@@ -201,8 +199,9 @@ namespace granular_dg::column
           }
         rankine_hugoniot(diagnostics);
         stationary_comparison(U, diagnostics, directory, write_files);
-        if (sgn_map_file && (std::fflush(sgn_map_file) != 0 || std::ferror(sgn_map_file)))
-          throw RunError("cannot write " + directory + "/sgn-map.csv (disk full or not writable)");
+        if (sgn_map_file)
+          require_written(std::fflush(sgn_map_file) == 0 && !std::ferror(sgn_map_file),
+                          directory + "/sgn-map.csv");
       }
 
     private:
@@ -469,8 +468,7 @@ namespace granular_dg::column
           {
             claim_output_file(directory + "/final-profile.csv");
             out = std::fopen((directory + "/final-profile.csv").c_str(), "w");
-            if (!out)
-              throw RunError("cannot write " + directory + "/final-profile.csv (not writable)");
+            require_written(out != nullptr, directory + "/final-profile.csv");
             std::fprintf(out, "z,strain,strain_janssen,strain_auxiliary,sgn_v\n");
           }
         double sigma = sigma_b, max_j = 0, max_a = 0, l2_j = 0, l2_a = 0;
@@ -494,9 +492,8 @@ namespace granular_dg::column
             l2_j += h * (u - u_j) * (u - u_j);
             l2_a += h * (u - u_a) * (u - u_a);
           }
-        if (out && std::fclose(out) != 0)
-          throw RunError("cannot write " + directory + "/final-profile.csv (disk full or not "
-                         "writable)");
+        if (out)
+          require_written(std::fclose(out) == 0, directory + "/final-profile.csv");
         diagnostics.add("janssen_max_difference", max_j);
         diagnostics.add("janssen_l2_difference", std::sqrt(l2_j));
         diagnostics.add("auxiliary_max_difference", max_a);
