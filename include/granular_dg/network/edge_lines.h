@@ -82,6 +82,11 @@ namespace granular_dg::network
     EndKind &kind(const unsigned int e, const unsigned int side) { return end_kind[2 * e + side]; }
     double  &outer_state(const unsigned int e, const unsigned int side) { return outer[2 * e + side]; }
 
+    /// The flux through the end side of edge e (in the edge's direction)
+    /// in the last stage(): the flux the edge's update used, which the
+    /// vertex and the far-end balance take as theirs (so edges and vertices
+    /// conserve mass to the bit). face = 2 e + side.
+    double boundary_flux(const std::size_t face) const { return end_flux[face]; }
     /// the trace of edge e at x = 0 (side 0) or x = L (side 1)
     double trace(const double *u, unsigned int e, unsigned int side) const;
     /// the trace of the cell with modes x at xi = 0 (side 0) or 1 (side 1)
@@ -158,6 +163,8 @@ namespace granular_dg::network
     std::vector<double>       h, inverse_h;
     std::vector<EndKind>      end_kind;
     std::vector<double>       outer;
+    /// boundary_flux(): 2 per edge, written by stage()
+    mutable std::vector<double> end_flux;
     unsigned int              modes = 1, n_q = 1;
     static constexpr unsigned int max_modes = 5, max_points = max_modes + 1;
     /// Gauss points and weights on [0, 1]; basis[q][k] = L_k(x_q), derivative[q][k] = L_k'(x_q)

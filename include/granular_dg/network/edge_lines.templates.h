@@ -42,6 +42,7 @@ namespace granular_dg::network
     , h(sizes)
     , end_kind(2 * n_cells.size(), EndKind::outflow)
     , outer(2 * n_cells.size(), 0.)
+    , end_flux(2 * n_cells.size(), 0.)
     , modes(m.degree + 1)
   {
     AssertThrow(modes <= max_modes, ExcMessage("the network's edges support degrees 0-4"));
@@ -174,6 +175,7 @@ namespace granular_dg::network
     traces(0, U0, U1);
     // the flux through the left face of cell c, kept from one cell to the next
     double       F_left = law.flux(outer_of(e, 0, U0), U0);
+    end_flux[2 * e]     = F_left;
     unsigned int c      = 0;
     if (W > 1 && !blending)
       {
@@ -186,7 +188,10 @@ namespace granular_dg::network
                          last && c + W == n ? last_cells(src, e, c) : src + index(e, c + 1),
                          law, F_left, out);
         if (c == n)
-          return;
+          {
+            end_flux[2 * e + 1] = F_left;
+            return;
+          }
         if (c != 0)
           traces(c, U0, U1);
       }
@@ -222,6 +227,7 @@ namespace granular_dg::network
         U0     = V0;
         U1     = V1;
       }
+    end_flux[2 * e + 1] = F_left;
   }
 
   /// The cells c + 1 .. c + W - 1 of the rank's last edge e and a cell of

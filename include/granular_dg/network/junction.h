@@ -68,13 +68,6 @@ namespace granular_dg::network
     double
     net_outflow(const double *traces, double u0) const;
 
-    /// net_outflow() with the laws and directions (incoming: 1) of the ends
-    /// read from arrays in the order of ends(): a network keeps those of all
-    /// its vertices in one array, which a stage reads in order.
-    double
-    net_outflow(const Law *law, const unsigned char *incoming, const double *traces,
-                double u0) const;
-
     /// du_0/dt of (4.1b) from the net outflow (0 for a vertex without volume).
     double
     rate(const double net_outflow) const
@@ -154,20 +147,12 @@ namespace granular_dg::network
   double
   Junction<Law>::net_outflow(const double *traces, const double u0) const
   {
-    return net_outflow(flux.data(), incoming.data(), traces, u0);
-  }
-
-  template <typename Law>
-  double
-  Junction<Law>::net_outflow(const Law *law, const unsigned char *in, const double *traces,
-                             const double u0) const
-  {
-    // end_fluxes() summed without a vector (a stage calls this once per vertex)
+    // end_fluxes() summed without a vector (a balance calls this ~60 times)
     double sum = 0;
     for (unsigned int i = 0; i < end_list.size(); ++i)
       {
-        const double F = end_flux(law[i], in[i], traces[i], u0);
-        sum += in[i] ? -F : F;
+        const double F = end_flux(flux[i], incoming[i], traces[i], u0);
+        sum += incoming[i] ? -F : F;
       }
     return sum;
   }

@@ -297,15 +297,18 @@ namespace granular_dg::network
     unsigned int local(const unsigned int k) const { return local_edge[k]; }
     /// the trace of edge k at x = 0 (at_end false) or x = L (at_end true)
     double trace(unsigned int edge, bool at_end, const NetworkState &s) const;
-    /// the vertex rates and the far-end inflow of the stage at src (the
-    /// coupling part of a stage; sets the vertex values the edges see)
-    const std::vector<double> &couple(double t, const NetworkState &src) const;
+    /// The values the edges see at the vertices in a stage (or limiter pass)
+    /// at s: vertex_u0 and the outer states of the edge ends.
+    void set_vertex_states(const NetworkState &s, double time) const;
+    /// After the edges' stage: the vertex rates (4.1b) from the fluxes the
+    /// edges used at their vertex ends; records the stage's far-end inflow.
+    const std::vector<double> &vertex_rates() const;
     /// the value the edges see at vertex v: u_0, or the balance of the
     /// traces (of the last fill_traces(s)) for a vertex without volume
     double vertex_state(unsigned int v, const NetworkState &s, double t) const;
-    /// inflow - outflow through the free ends of this rank's edges, with the
-    /// far-end data of the last set_end_states()
-    double far_end_inflow(const NetworkState &s) const;
+    /// inflow - outflow through the free ends of this rank's edges in the
+    /// last stage (the fluxes the edges used)
+    double far_end_inflow() const;
     void   post_stage(NetworkState &s, double stage_time);
     /// Inadmissible unless s is finite (and, at degree 0, in the range of
     /// the step).
@@ -378,8 +381,9 @@ namespace granular_dg::network
     /// on another rank)
     std::unique_ptr<EdgeLines<Law>>                  lines;
     std::vector<int>                                 local_edge;
-    /// the traces exchanged at the vertices shared by several ranks
-    mutable std::vector<double>                      exchanged;
+    /// the traces (and, after a stage, the fluxes) of the ends of the
+    /// vertices shared by several ranks, one per slot
+    mutable std::vector<double>                      exchanged, exchanged_flux;
     /// a vertex balance that failed on this rank (parallel runs)
     mutable std::optional<std::string>               pending_error;
     /// fill_traces(): one per entry of vertex_ends
@@ -391,17 +395,15 @@ namespace granular_dg::network
     /// with Dirichlet data
     std::vector<std::pair<unsigned int, unsigned int>> vertex_faces, free_faces, data_faces;
     /// the ends of each vertex (CSR: those of v are first[v] .. first[v +
-    /// 1] - 1, in Junction::ends() order): the array index of the cell
-    /// whose trace it takes (source >= 0), or -1 - its slot in exchanged
-    /// (a vertex shared with other ranks); at_end: the trace at x = L (an
-    /// incoming end); law: the edge's flux (the vertex balance reads these
-    /// in order instead of each Junction's own arrays)
+    /// 1] - 1, in Junction::ends() order): the end face of a local edge
+    /// whose trace and flux it takes (face = 2 e + side >= 0), or -1 - its
+    /// slot in exchanged (a vertex shared with other ranks); at_end: the
+    /// face at x = L (an incoming end)
     struct VertexEnds
     {
       std::vector<std::size_t>   first;
-      std::vector<long>          source;
+      std::vector<long>          face;
       std::vector<unsigned char> at_end;
-      std::vector<Law>           law;
     } vertex_ends;
     /// the ends of this rank's vertices on this rank's edges, in the order
     /// of vertex_ends (one flat pass for the total variation): the vertex

@@ -106,15 +106,16 @@ namespace granular_dg::network
             const bool         owned = ranks->owns_edge(k);
             const std::size_t  cell =
               owned ? lines->index(local(k), ends[i].incoming ? edge_cells[k] - 1 : 0) : 0;
-            vertex_ends.source.push_back(slot >= 0 ? -1 - long(slot) : long(cell));
+            vertex_ends.face.push_back(slot >= 0 ? -1 - long(slot) :
+                                                   long(2 * local(k) + ends[i].incoming));
             vertex_ends.at_end.push_back(ends[i].incoming);
-            vertex_ends.law.push_back(laws[k]);
             if (owned)
               owned_ends.push_back({v, cell});
           }
-        vertex_ends.first.push_back(vertex_ends.source.size());
+        vertex_ends.first.push_back(vertex_ends.face.size());
       }
     exchanged.assign(ranks->n_slots(), 0.);
+    exchanged_flux.assign(ranks->n_slots(), 0.);
     for (const unsigned int v : ranks->vertices())
       without_volume = without_volume || junctions[v].width() == 0;
     u.vertices.assign(net.vertices.size(), 0.);
@@ -283,13 +284,12 @@ namespace granular_dg::network
   void
   NetworkProblem<Law>::fill_traces(const NetworkState &s) const
   {
-    end_traces.resize(vertex_ends.source.size());
+    end_traces.resize(vertex_ends.face.size());
     for (std::size_t i = 0; i < end_traces.size(); ++i)
       {
-        const long source = vertex_ends.source[i];
-        end_traces[i]     = source < 0 ?
-                              exchanged[-1 - source] :
-                              lines->trace_at(s.edges.data() + source, vertex_ends.at_end[i]);
+        const long face = vertex_ends.face[i];
+        end_traces[i]   = face < 0 ? exchanged[-1 - face] :
+                                     lines->trace(s.edges.data(), face / 2, face % 2);
       }
   }
 
@@ -341,18 +341,14 @@ namespace granular_dg::network
 
   template <typename Law>
   double
-  NetworkProblem<Law>::far_end_inflow(const NetworkState &s) const
+  NetworkProblem<Law>::far_end_inflow() const
   {
+    // inflow at x = 0, outflow at x = L
     double sum = 0;
     for (const auto &[k, side] : free_faces)
       {
-        // the far-end data as the edge's end face sees it (set_end_states()):
-        // inflow at x = 0, outflow at x = L
-        const Edge  &e      = net.edges[k];
-        const double inside = trace(k, side, s);
-        const double ghost =
-          e.far_end == FarEnd::dirichlet ? lines->outer_state(local(k), side) : inside;
-        sum += side == 0 ? laws[k].flux(ghost, inside) : -laws[k].flux(inside, ghost);
+        const double F = lines->boundary_flux(2 * local(k) + side);
+        sum += side == 0 ? F : -F;
       }
     return sum;
   }
@@ -365,22 +361,46 @@ namespace granular_dg::network
   }
 
   template <typename Law>
-  const std::vector<double> &
-  NetworkProblem<Law>::couple(const double time, const NetworkState &src) const
+  void
+  NetworkProblem<Law>::set_vertex_states(const NetworkState &s, const double time) const
   {
+    // vertices without volume follow the traces: shared ones need them
+    if (ranks->has_cut_vertex_without_volume())
+      exchange_traces(s);
+    if (without_volume)
+      fill_traces(s);
+    for (const unsigned int v : ranks->vertices())
+      vertex_u0[v] = vertex_state(v, s, time);
+    set_end_states(time);
+  }
+
+  template <typename Law>
+  const std::vector<double> &
+  NetworkProblem<Law>::vertex_rates() const
+  {
+    // the fluxes of the ends at cut vertices, from the ranks of their edges
+    if (ranks->n_cut_vertices() > 0)
+      {
+        exchanged_flux.assign(exchanged_flux.size(), 0.);
+        for (const auto &end : ranks->sent_ends())
+          exchanged_flux[end.slot] = lines->boundary_flux(2 * local(end.edge) + end.at_end);
+        ranks->exchange(exchanged_flux);
+      }
+    // Junction::net_outflow() of these fluxes: the same sum in the same order
     rates.resize(junctions.size());
-    exchange_traces(src);
-    fill_traces(src);
     for (const unsigned int v : ranks->vertices())
       {
-        const double u0 = vertex_state(v, src, time);
-        vertex_u0[v]    = u0;
-        const auto   f  = vertex_ends.first[v];
-        rates[v]        = junctions[v].rate(junctions[v].net_outflow(
-          vertex_ends.law.data() + f, vertex_ends.at_end.data() + f, traces_at(v), u0));
+        double sum = 0;
+        for (auto i = vertex_ends.first[v]; i < vertex_ends.first[v + 1]; ++i)
+          {
+            const long   face = vertex_ends.face[i];
+            const double F =
+              face < 0 ? exchanged_flux[-1 - face] : lines->boundary_flux(face);
+            sum += vertex_ends.at_end[i] ? -F : F;
+          }
+        rates[v] = junctions[v].rate(sum);
       }
-    set_end_states(time);
-    stage_inflow.push_back(far_end_inflow(src));
+    stage_inflow.push_back(far_end_inflow());
     return rates;
   }
 
@@ -410,10 +430,11 @@ namespace granular_dg::network
   {
     // the vertex coupling is part of the right-hand side of the network
     StepPhases::Scope scope(phases, StepPhases::operator_apply);
-    const auto       &rate = couple(time, src);
+    set_vertex_states(src, time);
     dst.edges.resize(src.edges.size());
     lines->stage(src.edges.data(), dst.edges.data(), s.old ? s.old->edges.data() : nullptr,
                  s.alpha, s.beta, s.gamma);
+    const auto &rate = vertex_rates();
     dst.vertices.resize(src.vertices.size());
     for (const unsigned int v : ranks->vertices())
       dst.vertices[v] =
@@ -476,17 +497,9 @@ namespace granular_dg::network
   {
     {
       StepPhases::Scope scope(phases, StepPhases::limiter);
-      // vertices without volume follow the traces: shared ones need them
-      const bool shared = ranks->has_cut_vertex_without_volume();
-      if (shared)
-        exchange_traces(s);
-      if (without_volume)
-        fill_traces(s);
-      for (const unsigned int v : ranks->vertices())
-        vertex_u0[v] = vertex_state(v, s, stage_time);
-      set_end_states(stage_time);
+      set_vertex_states(s, stage_time);
       lines->limit(s.edges.data());
-      if (shared)
+      if (ranks->has_cut_vertex_without_volume())
         exchange_traces(s);
       if (without_volume)
         fill_traces(s);
