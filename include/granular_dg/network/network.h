@@ -306,6 +306,15 @@ namespace granular_dg::network
     /// the value the edges see at vertex v: u_0, or the balance of the
     /// traces (of the last fill_traces(s)) for a vertex without volume
     double vertex_state(unsigned int v, const NetworkState &s, double t) const;
+    /// f(face, g) for every face (edge, side) of data_faces and its far-end
+    /// data g at time
+    template <typename F>
+    void far_end_data(double time, const F &f) const;
+    /// the point of a free end face (edge, side) on its edge
+    double far_end_point(const std::pair<unsigned int, unsigned int> &face) const
+    {
+      return face.second == 0 ? 0. : net.edges[face.first].length;
+    }
     /// inflow - outflow through the free ends of this rank's edges in the
     /// last stage (the fluxes the edges used)
     double far_end_inflow() const;

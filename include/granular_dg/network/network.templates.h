@@ -89,6 +89,12 @@ namespace granular_dg::network
             if (net.edges[k].far_end == FarEnd::dirichlet)
               data_faces.emplace_back(k, side);
           }
+    // edges that share their far-end data next to each other: far_end_data()
+    // evaluates each function once per point and time
+    std::stable_sort(data_faces.begin(), data_faces.end(), [&](const auto &a, const auto &b) {
+      return std::make_pair(data[a.first].far_end.get(), far_end_point(a)) <
+             std::make_pair(data[b.first].far_end.get(), far_end_point(b));
+    });
     // where the trace of each end of this rank's vertices comes from (a
     // vertex not cut has all its edges here)
     std::vector<bool> here(net.vertices.size(), false);
@@ -415,11 +421,29 @@ namespace granular_dg::network
     if (time == data_time)
       return;
     data_time = time;
-    for (const auto &[k, side] : data_faces)
+    far_end_data(time, [&](const auto &face, const double g) {
+      lines->outer_state(local(face.first), face.second) = g;
+    });
+  }
+
+  template <typename Law>
+  template <typename F>
+  void
+  NetworkProblem<Law>::far_end_data(const double time, const F &f) const
+  {
+    // (data_faces are sorted by function and point: each pair evaluated once)
+    Function<1>       *function = nullptr;
+    double             x = NAN, g = NAN;
+    for (const auto &face : data_faces)
       {
-        data[k].far_end->set_time(time);
-        lines->outer_state(local(k), side) =
-          data[k].far_end->value(Point<1>(side == 0 ? 0. : net.edges[k].length));
+        if (data[face.first].far_end.get() != function || far_end_point(face) != x)
+          {
+            function = data[face.first].far_end.get();
+            x        = far_end_point(face);
+            function->set_time(time);
+            g = function->value(Point<1>(x));
+          }
+        f(face, g);
       }
   }
 
@@ -454,14 +478,11 @@ namespace granular_dg::network
     const internal::Scan edges = internal::scan<true>(u.edges);
     lo               = std::min(lo, edges.lo);
     hi               = std::max(hi, edges.hi);
-    for (const auto &[k, side] : data_faces)
-      for (const double s : {time, time + 0.5 * dt, time + dt})
-        {
-          data[k].far_end->set_time(s);
-          const double g = data[k].far_end->value(Point<1>(side == 0 ? 0. : net.edges[k].length));
-          lo = std::min(lo, g);
-          hi = std::max(hi, g);
-        }
+    for (const double s : {time, time + 0.5 * dt, time + dt})
+      far_end_data(s, [&](const auto &, const double g) {
+        lo = std::min(lo, g);
+        hi = std::max(hi, g);
+      });
     return {ranks->min(lo), ranks->max(hi)};
   }
 

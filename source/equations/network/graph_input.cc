@@ -396,7 +396,12 @@ namespace granular_dg::network
     EdgeData d;
     d.initial = make_data(initial, at + initial_name, false);
     if (e.far_end == FarEnd::dirichlet && (e.from == free_end || e.to == free_end))
-      d.far_end = make_data(far_end_data, at + far_end_name, true);
+      {
+        auto &f = far_end_functions[far_end_data];
+        if (!f)
+          f = make_data(far_end_data, at + far_end_name, true);
+        d.far_end = f;
+      }
     graph.edges.push_back(std::move(e));
     flux.push_back(f);
     data.push_back(d);

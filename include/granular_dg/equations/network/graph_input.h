@@ -6,6 +6,8 @@
 #include <granular_dg/network/graph.h>
 #include <granular_dg/network/network.h>
 
+#include <map>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -91,6 +93,9 @@ namespace granular_dg::network
     add_edge(Edge e, const FluxFunction &f, const std::string &where, const std::string &initial,
              const std::string &far_end_data, const std::string &initial_name,
              const std::string &far_end_name);
+    /// the far-end data by their text: edges with the same data share one
+    /// function (a stage evaluates each once, NetworkProblem::set_end_states)
+    std::map<std::string, std::shared_ptr<Function<1>>> far_end_functions;
     /// per vertex: whether its initial value was given (else the default)
     std::vector<bool> value_given;
     /// the graph file's vertex ids, in the order of graph.vertices
