@@ -217,6 +217,7 @@ main(int argc, char **argv)
 
       mpi.emplace(argc, argv, 1);
       root = Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) == 0;
+      handle_interrupts_outside_time_loops(root);
       const Scene     &scene = find_scene(find_scene_name(filename, overrides), "scene");
       ParameterHandler prm;
       declare_all(prm, scene);

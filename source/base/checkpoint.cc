@@ -15,6 +15,8 @@
 #include <map>
 #include <sstream>
 
+#include <unistd.h>
+
 namespace granular_dg
 {
   namespace fs = std::filesystem;
@@ -55,6 +57,31 @@ namespace granular_dg
     on_interrupt(const int signal)
     {
       received_signal = signal;
+    }
+
+    /// handle_interrupts_outside_time_loops(): whether this process reports,
+    /// and whether a time loop has begun
+    volatile std::sig_atomic_t report_outside = 0, loop_begun = 0;
+
+    void
+    on_interrupt_outside_loop(const int signal)
+    {
+      // (write and _exit only: nothing else is safe in a signal handler)
+      static constexpr char set_up[] =
+        " during set-up, before the first step: no results and no checkpoint were written (to "
+        "run again into the same output directory, set Output/overwrite = true)\n";
+      static constexpr char after[] =
+        " outside a time loop: no checkpoint was written and the run's last files may be "
+        "incomplete\n";
+      if (report_outside)
+        {
+          const bool term = signal == SIGTERM;
+          ssize_t    ok   = write(2, "granular_dg: interrupted by ", 28);
+          ok = write(2, term ? "SIGTERM" : "SIGINT", term ? 7 : 6);
+          ok = loop_begun ? write(2, after, sizeof(after) - 1) : write(2, set_up, sizeof(set_up) - 1);
+          (void)ok;
+        }
+      _exit(128 + signal);
     }
 
     /// step-NNNNNNNNNN.ckpt -> NNNNNNNNNN (or -1 for other names)
@@ -770,8 +797,20 @@ namespace granular_dg
     return c;
   }
 
+  void
+  handle_interrupts_outside_time_loops(const bool report)
+  {
+    report_outside          = report;
+    struct sigaction action = {};
+    action.sa_handler       = on_interrupt_outside_loop;
+    sigemptyset(&action.sa_mask);
+    sigaction(SIGINT, &action, nullptr);
+    sigaction(SIGTERM, &action, nullptr);
+  }
+
   InterruptHandlers::InterruptHandlers()
   {
+    loop_begun           = 1;
     received_signal      = 0;
     struct sigaction action = {};
     action.sa_handler       = on_interrupt;

@@ -39,3 +39,10 @@ set_tests_properties(mpi/layered_2d_rest_ranks PROPERTIES RUN_SERIAL TRUE)
 # (relative 1e-6; stderr is not compared: mpirun adds its own lines).
 granular_dg_test(mpi/failure_on_other_rank PRM mpi/failure_on_rank_1.prm MPI 2 EXIT 3
   KEEP_OUTPUT COMPARE summary.json:status,final_time NUMDIFF -r 1e-6 LABELS mpi)
+
+# A 1D scene on 2 ranks is bad input: its mesh is not spread over the ranks
+# (each rank would compute the whole column and write every file into the
+# same directory): the one line on stderr (mpirun's own lines aside), exit 2
+# and nothing written.
+granular_dg_test(mpi/one_dimensional_on_2_ranks PRM mpi/column_on_2_ranks.prm MPI 2 EXIT 2
+  KEEP_OUTPUT NUMDIFF -a 0 -r 0 LABELS mpi)

@@ -57,3 +57,7 @@ granular_dg_unit_test(unit/limiter_batches NUMDIFF -a 0 -r 0)
 # directory's manifest does not list refused before it is touched. Fails
 # itself otherwise.
 granular_dg_unit_test(unit/output_files NUMDIFF -a 0 -r 0)
+# A SIGINT or SIGTERM outside a time loop (during set-up, after the loop):
+# exit 128 + signal at once and one line saying when (none on a rank that
+# does not report), each in a child process; fails itself otherwise.
+granular_dg_unit_test(unit/interrupt_outside_loop NUMDIFF -a 0 -r 0)

@@ -342,7 +342,7 @@ namespace granular_dg
   /// stops. Further signals change nothing (the final checkpoint and summary
   /// are always complete, and after a stop by a signal they are ignored
   /// until the process exits); kill -9 ends a run at once. Outside time
-  /// loops the signals keep their default action.
+  /// loops: handle_interrupts_outside_time_loops().
   class InterruptHandlers
   {
   public:
@@ -355,6 +355,12 @@ namespace granular_dg
   private:
     struct sigaction previous_int, previous_term;
   };
+
+  /// Outside time loops (set-up, final output), SIGINT and SIGTERM end the
+  /// process at once with exit 128 + signal, and (report: the MPI root) one
+  /// line on stderr saying when: "interrupted by SIGINT during set-up ...".
+  void
+  handle_interrupts_outside_time_loops(bool report);
 
   /// The signal received so far (0: none).
   int

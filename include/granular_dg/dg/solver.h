@@ -161,7 +161,9 @@ namespace granular_dg::dg
   /// An InputError naming Time stepping/scheme when the scene has a stage
   /// operation (SceneHooks::stage_operation) the scheme cannot carry: only
   /// SSP-RK3 can; and one naming Time stepping/skip tolerance when the run
-  /// cannot skip cells. The one check of the method against the scene: a
+  /// cannot skip cells; and one naming the MPI ranks when there are several
+  /// and the mesh is not spread over them (the 1D scenes). The one check of
+  /// the method against the scene: a
   /// scene calls it once its scene data is built, before it writes anything.
   template <int dim, typename Physics>
   void

@@ -2,6 +2,7 @@
 
 #include <deal.II/base/quadrature.h>
 #include <deal.II/base/utilities.h>
+#include <deal.II/distributed/tria_base.h>
 #include <deal.II/fe/fe_dgq.h>
 #include <deal.II/fe/fe_values.h>
 #include <deal.II/grid/grid_tools.h>
@@ -222,6 +223,13 @@ namespace granular_dg::dg
   void
   require_scheme_fits(const DiscretizationParameters &method, const SceneData<dim, Physics> &scene)
   {
+    // a mesh not spread over the ranks would be computed and written by each
+    const unsigned int ranks = Utilities::MPI::n_mpi_processes(MPI_COMM_WORLD);
+    require(ranks == 1 || dynamic_cast<const parallel::TriangulationBase<dim> *>(
+                            scene.triangulation.get()) != nullptr,
+            "MPI ranks", ranks,
+            "1 (the mesh of the " + scene.scene + " scene in " + std::to_string(dim) +
+              "D is not spread over ranks: run it without mpirun)");
     if (method.skip_at_rest)
       {
         if (const std::string why = why_cells_at_rest_cannot_be_skipped(method, scene);
