@@ -9,6 +9,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdlib>
+#include <functional>
 #include <filesystem>
 #include <fstream>
 #include <regex>
@@ -119,17 +120,28 @@ namespace granular_dg
     b.add("enabled", convergence, Patterns::Bool(),
           "Run a convergence study against the exact solution instead of a single run.");
     b.add("degrees", "0,1,2,3,4", Patterns::List(Patterns::Integer(0, 4)),
-          "Degrees of the study.",
-          [this](const std::string &text) { convergence_degrees = unsigned_list(text); });
+          "Degrees of the study, each once.",
+          [this](const std::string &text) {
+            convergence_degrees = unsigned_list(text);
+            auto sorted         = convergence_degrees;
+            std::sort(sorted.begin(), sorted.end());
+            require(!convergence || !sorted.empty(), "Convergence/degrees", text,
+                    "at least one degree for a study");
+            require(!convergence || std::adjacent_find(sorted.begin(), sorted.end()) == sorted.end(),
+                    "Convergence/degrees", text, "each degree once");
+          });
     b.add("cells", "16,32,64,128", Patterns::List(Patterns::Integer(1)),
           "Numbers of cells of the study, coarse to fine, per direction of the mesh (every "
           "direction is refined) or as the scene's doc/ page defines them.",
           [this](const std::string &text) {
             convergence_cells = unsigned_list(text);
+            require(!convergence || convergence_cells.size() >= 2, "Convergence/cells", text,
+                    "at least two mesh sizes for a study");
+            // the rates of the two finest meshes are those of the last two
             require(!convergence ||
-                      (convergence_cells.size() >= 2 && !convergence_degrees.empty()),
-                    "Convergence/cells",
-                    convergence_cells.size(), "at least two mesh sizes and one degree for a study");
+                      std::adjacent_find(convergence_cells.begin(), convergence_cells.end(),
+                                         std::greater_equal<>()) == convergence_cells.end(),
+                    "Convergence/cells", text, "increasing mesh sizes, coarse to fine");
           });
     b.add("CFL numbers", "", Patterns::Anything(),
           "One CFL number per entry of Convergence/degrees (comma-separated); empty: Time "
