@@ -14,10 +14,14 @@ those aside), 'within TOL', or 'DIFFERENT' (exit code 1).
 """
 import sys
 
-from granular_dg import arguments
+from granular_dg import arguments, directory
 from granular_dg.compare import compare_trees
 
-a = arguments(__doc__, ["before", "after", ("--tolerance", dict(type=float, default=1e-13))])
+a = arguments(__doc__, [("before", dict(type=directory)), ("after", dict(type=directory)),
+                        ("--tolerance", dict(type=float, default=1e-13))])
+if not a.tolerance >= 0:
+    print("compare_runs.py: error: --tolerance must be >= 0, not %g" % a.tolerance, file=sys.stderr)
+    sys.exit(2)
 lines, agree = compare_trees(a.before, a.after, a.tolerance)
 print("\n".join(lines))
 sys.exit(0 if agree else 1)

@@ -3,11 +3,19 @@ its outputs (outputs), comparing runs (compare) and matplotlib set-up (plot).
 The scripts put contrib/ on the path by being there; run them with Debian's
 /usr/bin/python3. The readers need only the standard library and numpy."""
 import argparse
+import os
 
 
 def parser(doc):
     """An ArgumentParser whose help is the script's docstring."""
     return argparse.ArgumentParser(description=doc, formatter_class=argparse.RawDescriptionHelpFormatter)
+
+
+def directory(path):
+    """argparse type: a directory that exists (a mistyped one would read as empty)."""
+    if os.path.isdir(path):
+        return path
+    raise argparse.ArgumentTypeError("%s is not a directory" % path)
 
 
 def add(to, spec):

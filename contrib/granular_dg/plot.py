@@ -3,6 +3,8 @@ figure is made, so the readers work without it (Debian's python3-matplotlib:
 run the scripts with /usr/bin/python3)."""
 import os
 
+from granular_dg import directory
+
 STYLES = ["-", "--", ":", "-."]  # the line styles of runs drawn in black or one colour
 
 def pyplot():
@@ -63,4 +65,4 @@ def log_ticks(ax, values):
 def split_run(text):
     """'DIR:label' -> (DIR, label); the label defaults to DIR's last part."""
     d, _, name = text.partition(":")
-    return d, name or os.path.basename(os.path.normpath(d))
+    return directory(d), name or os.path.basename(os.path.normpath(d))

@@ -15,9 +15,11 @@ import math
 import os
 import re
 import shutil
+import subprocess
 import sys
 
-sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "contrib"))
+CONTRIB = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "contrib")
+sys.path.insert(0, CONTRIB)
 from granular_dg import outputs  # noqa: E402
 from granular_dg.compare import compare_trees, stress_l1  # noqa: E402
 
@@ -207,6 +209,12 @@ def compare(d):
         f.write("x\n1\n")
     lines, agree = compare_trees("wall_a", "wall_b")
     check("a file only AFTER has: DIFFERENT", not agree and "extra.csv: new after" in lines, lines)
+    for args, message in (([d, "no_such_run"], "no_such_run is not a directory"),
+                          ([d, d, "--tolerance", "-1"], "--tolerance must be >= 0")):
+        run = subprocess.run([sys.executable, os.path.join(CONTRIB, "compare_runs.py")] + args,
+                             capture_output=True, text=True)
+        check("compare_runs.py: " + message + ", exit 2", run.returncode == 2 and message in run.stderr,
+              [run.returncode, run.stderr])
 
 
 {"layered": layered, "network": network, "hopper": hopper, "convergence": convergence, "benchmark": benchmark,
