@@ -47,6 +47,13 @@ granular_dg_test(hopper/preservation_cone PRM ../prm/hopper_radial_cone.prm
   ARGS --set Hopper/cells=100 --set "Output/output times=1"
   COMPARE summary.json:diagnostics/max_rel_diff_radial NUMDIFF -a 2.5e-3 -r 0
   FIXTURES_SETUP hopper_field WORKDIR ${CMAKE_CURRENT_BINARY_DIR}/hopper_preservation_run)
+# The same cone with a frictionless wall (Phi = 0: T_rr = chi_w T_rtheta
+# with chi_w = -inf, i.e. T_rtheta = 0 at the wall, the limit of the wall
+# state): Jenike's field for Phi = 0 is kept to the same bound.
+granular_dg_test(hopper/preservation_cone_frictionless PRM ../prm/hopper_radial_cone.prm
+  ARGS --set Hopper/cells=100 --set "Output/output times=1" --set "Output/write vtu=false"
+       --set "Physics/wall friction angle=0"
+  COMPARE summary.json:diagnostics/max_rel_diff_radial NUMDIFF -a 2.5e-3 -r 0)
 
 # ParaView opens the marched field hopper-field.pvd of the cone run: the
 # upper hopper and the marched lower hopper (deal.II DataOutBase patches, one

@@ -402,8 +402,11 @@ namespace granular_dg::hopper
     State<Number>
     wall_state(const State<Number> &U_m) const
     {
-      const Number  lambda_1 = eigenvalues(U_m)[0];
-      const Number  kappa    = (chi_w * U_m[1] - U_m[0]) / (Number(1.) + chi_w * lambda_1);
+      const Number lambda_1 = eigenvalues(U_m)[0];
+      // a frictionless wall (Phi = 0, chi_w = -inf): the limit T_rt+ = 0
+      const Number kappa = std::isinf(chi_w) ?
+                             U_m[1] / lambda_1 :
+                             (chi_w * U_m[1] - U_m[0]) / (Number(1.) + chi_w * lambda_1);
       State<Number> U_p;
       U_p[0] = U_m[0] + kappa;
       U_p[1] = U_m[1] - kappa * lambda_1;
