@@ -163,6 +163,9 @@ namespace
             const std::string name = i + 1 < args.size() ? args[i + 1] : "";
             if (name.empty())
               throw InputError("--print-parameters needs a scene: one of " + scene_names());
+            if (i + 2 < args.size())
+              throw InputError("--print-parameters takes one scene and nothing after it ('" +
+                               args[i + 2] + "')");
             ParameterHandler prm;
             declare_all(prm, find_scene(name, "--print-parameters"));
             prm.set("scene", name);
@@ -192,6 +195,9 @@ namespace
       }
     if (!filename.empty())
       return -1;
+    if (!args.empty())
+      throw InputError("no parameter file given: granular_dg [--resume] CASE.prm [--set ...] "
+                       "(see granular_dg --help)");
     if (root)
       print_help();
     return 2;

@@ -262,6 +262,12 @@ namespace granular_dg
                        "': it does not exist or is not readable");
     if (std::filesystem::is_directory(filename))
       throw InputError("cannot read parameter file '" + filename + "': it is a directory");
+    // (deal.II would quote the invisible mark as part of the first line)
+    char start[3] = {};
+    if (in.read(start, 3) && std::string(start, 3) == "\xEF\xBB\xBF")
+      throw InputError("parameter file '" + filename +
+                       "' starts with a UTF-8 byte-order mark (the bytes EF BB BF, which some "
+                       "editors add): save it as UTF-8 without a BOM");
   }
 
   void

@@ -30,6 +30,9 @@ granular_dg_test(bad_input/print_parameters_unknown_scene ARGS --print-parameter
   EXIT 2 KEEP_OUTPUT NUMDIFF -a 0 -r 0)
 granular_dg_test(bad_input/set_scene_mismatch PRM ${base} ARGS --set scene=column
   EXIT 2 KEEP_OUTPUT NUMDIFF -a 0 -r 0)
+granular_dg_test(bad_input/resume_without_prm ARGS --resume EXIT 2 KEEP_OUTPUT NUMDIFF -a 0 -r 0)
+granular_dg_test(bad_input/print_parameters_extra ARGS --print-parameters column extra
+  EXIT 2 KEEP_OUTPUT NUMDIFF -a 0 -r 0)
 
 # An output directory with a previous run (scenario script, exact text).
 granular_dg_test(bad_input/previous_run EXE ${TEST_PYTHON}
