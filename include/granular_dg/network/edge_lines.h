@@ -112,6 +112,8 @@ namespace granular_dg::network
     /// max over the cells and Gauss points of |f'(u)| / h, and over the
     /// vertex ends (kind() == vertex) of |f'(vertex_values[2 e + side])| / h
     double max_speed_over_h(const double *u, const double *vertex_values) const;
+    /// whether limit() changes anything (a limiter, degree > 0)
+    bool limits() const { return method.limiter != dg::LimiterType::none && modes > 1; }
     /// The TVB limiter in place (the outer states are those at the time of
     /// u); the number of troubled cells.
     unsigned int limit(double *u) const;

@@ -518,8 +518,12 @@ namespace granular_dg::network
   {
     {
       StepPhases::Scope scope(phases, StepPhases::limiter);
-      set_vertex_states(s, stage_time);
-      lines->limit(s.edges.data());
+      // (the limiter's neighbours at the edge ends: the vertex values)
+      if (lines->limits())
+        {
+          set_vertex_states(s, stage_time);
+          lines->limit(s.edges.data());
+        }
       if (ranks->has_cut_vertex_without_volume())
         exchange_traces(s);
       if (without_volume)
