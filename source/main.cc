@@ -163,9 +163,10 @@ namespace
             const std::string name = i + 1 < args.size() ? args[i + 1] : "";
             if (name.empty())
               throw InputError("--print-parameters needs a scene: one of " + scene_names());
-            if (i + 2 < args.size())
-              throw InputError("--print-parameters takes one scene and nothing after it ('" +
-                               args[i + 2] + "')");
+            // (options after it are ignored, as --print-parameters answers at once)
+            if (i + 2 < args.size() && args[i + 2].rfind("-", 0) != 0)
+              throw InputError("--print-parameters takes one scene ('" + args[i + 2] +
+                               "' after it is not one of its arguments)");
             ParameterHandler prm;
             declare_all(prm, find_scene(name, "--print-parameters"));
             prm.set("scene", name);
