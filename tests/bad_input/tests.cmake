@@ -31,6 +31,8 @@ granular_dg_test(bad_input/print_parameters_unknown_scene ARGS --print-parameter
 granular_dg_test(bad_input/set_scene_mismatch PRM ${base} ARGS --set scene=column
   EXIT 2 KEEP_OUTPUT NUMDIFF -a 0 -r 0)
 granular_dg_test(bad_input/resume_without_prm ARGS --resume EXIT 2 KEEP_OUTPUT NUMDIFF -a 0 -r 0)
+granular_dg_test(bad_input/subnormal_number PRM ${base} ARGS --set "Time stepping/final time=1e-320"
+  EXIT 2 KEEP_OUTPUT NUMDIFF -a 0 -r 0)
 granular_dg_test(bad_input/print_parameters_extra ARGS --print-parameters column extra
   EXIT 2 KEEP_OUTPUT NUMDIFF -a 0 -r 0)
 

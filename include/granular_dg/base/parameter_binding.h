@@ -109,7 +109,20 @@ namespace granular_dg
         const std::string &documentation)
     {
       if (reading())
-        field = read<T>(name);
+        try
+          {
+            field = read<T>(name);
+          }
+        catch (const std::exception &)
+          {
+            // deal.II's Double pattern accepts a subnormal number that
+            // get_double() then cannot convert
+            if constexpr (!std::is_floating_point_v<T>)
+              throw;
+            require(false, path(name), prm.get(name),
+                    "a number that is 0 or of magnitude 2.2e-308 or more (smaller ones are "
+                    "subnormal and cannot be read as a double)");
+          }
       else
         prm.declare_entry(name, parameter_text(field), pattern, documentation);
       return Entry<T>(*this, path(name), field);
