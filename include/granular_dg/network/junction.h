@@ -163,6 +163,14 @@ namespace granular_dg::network
   {
     // net_outflow is nondecreasing in u0: bracket a sign change, then bisect
     const double *end = traces + end_list.size();
+    if (const double *bad = std::find_if(traces, end, [](double x) { return !std::isfinite(x); });
+        bad != end)
+      {
+        std::ostringstream s;
+        s << "an edge's trace at " << label << " is not finite at t = " << t << " (u = " << *bad
+          << "): no " << label << " state balances it (check the data of its edges)";
+        throw RunError(s.str());
+      }
     double        lo  = end_list.empty() ? 0. : *std::min_element(traces, end);
     double        hi  = end_list.empty() ? 0. : *std::max_element(traces, end);
     double width = std::max(1., hi - lo);
@@ -178,8 +186,10 @@ namespace granular_dg::network
         s << "no " << label << " state balances the edge fluxes at t = " << t
           << " (sum_out F - sum_in F stays "
           << (net_outflow(traces, hi) < 0 ? "negative" : "positive")
-          << "): the outgoing edges cannot carry the incoming flux; use a vertex "
-             "with volume (Network/vertex width factor > 0)";
+          << "): the outgoing edges cannot carry the incoming flux; "
+          << (dx0 > 0 ? "there is no stationary initial value for these data: give the vertex an "
+                        "initial value (Network/vertex initial value)" :
+                        "use a vertex with volume (Network/vertex width factor > 0)");
         throw RunError(s.str());
       }
     for (unsigned int i = 0; i < 200; ++i)
