@@ -6,7 +6,7 @@ the studies' directory (default output/network_studies):
   network.py studies [BUILD [STUDIES]]   the EOC tables of the five examples of Musch,
       Fjordholm & Risebro, Section 7, at grid levels 3-12 (degree 0, the paper's
       scheme) and for Examples 7.3 and 7.5 degrees 1-3 with the limiter; the smooth
-      order study (about 40 min on one core, degree 3 at level 12 dominates);
+      order study (all of them about 2.5 min of CPU, doc/network.md);
   network.py tables [STUDIES]            doc/network.md's tables (markdown);
   network.py charts STUDIES FIGURE_DIR   network_eoc.png (L1 error against the level at
       degree 0 beside the paper's Table 1 and twice it), network_work_precision.png

@@ -75,7 +75,16 @@ namespace granular_dg
         double                           h_previous = 0.;
         for (const unsigned int cells : params.convergence_cells)
           {
-            const StudyRow      r = run(i, cells);
+            StudyRow r;
+            try
+              {
+                r = run(i, cells);
+              }
+            catch (const RunError &e)
+              {
+                throw RunError("convergence study, degree " + format_number(p) +
+                               ", Convergence/cells = " + std::to_string(cells) + ": " + e.what());
+              }
             std::vector<double> row{p};
             for (unsigned int v = 0; v < r.values.size(); ++v)
               {

@@ -189,7 +189,11 @@ namespace granular_dg::network
           write_profiles(directory, index, time, same ? vtu_samples : other, vertices);
       }
     SnapshotFiles files;
-    files.main_file = "profile files";
+    if (profiles)
+      files.main_file = internal::snapshot_name("profile-", index,
+                                                options.profiles == Profiles::one_file ?
+                                                  ".csv" :
+                                                  "-edge-*.csv");
     if (!vtu)
       return files;
     const std::string base = internal::snapshot_name("solution-", index, "");

@@ -167,17 +167,21 @@ namespace granular_dg::network
                       "none): at x = " + number(x) + " it gives " + number(given) +
                         ", the example " + number(exact));
             }
-          if (e.from == free_end && e.far_end == FarEnd::dirichlet)
-            for (const double t : {0., 0.5 * final_time, final_time})
+          // Dirichlet data at a free end (inflow or outflow) at 201 times
+          const bool   at_start = e.from == free_end;
+          const double x_end    = at_start ? 0. : e.length;
+          if (e.far_end == FarEnd::dirichlet && (at_start || e.to == free_end))
+            for (unsigned int i = 0; i <= 200; ++i)
               {
+                const double t = final_time * i / 200.;
                 c.input.data[k].far_end->set_time(t);
-                const double given = c.input.data[k].far_end->value(Point<1>(0.));
-                const double exact = ex.exact->value(k, 0., t);
+                const double given = c.input.data[k].far_end->value(Point<1>(x_end));
+                const double exact = ex.exact->value(k, x_end, t);
                 require(std::abs(given - exact) <= 1e-12 * std::max(1., std::abs(exact)),
                         sec + "far end data", c.input.far_end_text[k],
-                        "the inflow of " + ex.name + " (or set Network/exact solution = none): "
-                        "at t = " + number(t) + " it gives " + number(given) + ", the example " +
-                          number(exact));
+                        "the solution of " + ex.name + " at that free end (or set Network/exact "
+                        "solution = none): at t = " + number(t) + " it gives " + number(given) +
+                          ", the example " + number(exact));
               }
         }
     }
