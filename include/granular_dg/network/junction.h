@@ -147,7 +147,7 @@ namespace granular_dg::network
   double
   Junction<Law>::net_outflow(const double *traces, const double u0) const
   {
-    // end_fluxes() summed without a vector (a balance calls this ~60 times)
+    // end_fluxes() summed without a vector (a balance calls it up to ~260 times)
     double sum = 0;
     for (unsigned int i = 0; i < end_list.size(); ++i)
       {
