@@ -17,6 +17,7 @@
 #include <filesystem>
 #include <fstream>
 #include <map>
+#include <regex>
 #include <sstream>
 #include <tuple>
 
@@ -71,7 +72,16 @@ namespace granular_dg::network
       return {};
     }
 
-    /// A constant for a number, else a parsed expression (in x, or in t).
+    /// whether an expression names the variable x (not as part of a name)
+    bool
+    uses_x(const std::string &text)
+    {
+      static const std::regex x(R"((^|[^A-Za-z0-9_])x([^A-Za-z0-9_]|$))");
+      return std::regex_search(text, x);
+    }
+
+    /// A constant for a number, else a parsed expression (in x, or in t:
+    /// far-end data are a function of time at the end's point).
     std::shared_ptr<Function<1>>
     make_data(const std::string &text, const std::string &where, const bool time_dependent)
     {
@@ -80,7 +90,11 @@ namespace granular_dg::network
           require(std::isfinite(*x), where, text, "a finite number or an expression");
           return std::make_shared<Functions::ConstantFunction<1>>(*x);
         }
-      return make_function<1>({text}, {where}, time_dependent);
+      auto f = make_function<1>({text}, {where}, time_dependent);
+      require(!time_dependent || !uses_x(text), where, text,
+              "an expression in t and the constant pi (far-end data are a function of time; x "
+              "would be the end's coordinate)");
+      return f;
     }
 
     /// "stationary" (none) or a constant expression
@@ -95,7 +109,7 @@ namespace granular_dg::network
         {
           const auto f = make_function<1>({text}, {parameter}, false);
           v            = f->value(Point<1>(0.3));
-          require(v == f->value(Point<1>(0.7)), parameter, text, allowed);
+          require(!uses_x(text) && v == f->value(Point<1>(0.7)), parameter, text, allowed);
         }
       catch (const InputError &)
         {
