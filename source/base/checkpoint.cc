@@ -634,42 +634,28 @@ namespace granular_dg
     for (unsigned int b = 1; b < n_blocks; ++b)
       starts[b] = starts[b - 1] + sizes[b - 1];
 
-    std::string                error;
     std::uint64_t              start = 0;
     std::vector<std::uint32_t> crcs(n_blocks); // of this rank's pieces
-    if (root)
-      try
-        {
-          std::error_code ec;
-          fs::create_directories(dir, ec);
-          start = write_head(tmp, id, parameters, step, time, payload, sizes, n_ranks);
-        }
-      catch (const RunError &e)
-        {
-          error = e.what();
-        }
-    if (!(error = agree_on_error(comm, error)).empty())
-      throw RunError(error);
+    agree_on_run_error(comm, [&] {
+      if (!root)
+        return;
+      std::error_code ec;
+      fs::create_directories(dir, ec);
+      start = write_head(tmp, id, parameters, step, time, payload, sizes, n_ranks);
+    });
     if (n_ranks > 1)
       start = Utilities::MPI::broadcast(comm, start, 0);
-    if (!write_pieces(tmp, start, payload, starts, before, crcs, comm))
-      error = "cannot write checkpoint " + tmp.string() + " through MPI-IO";
-    if (!(error = agree_on_error(comm, error)).empty())
-      throw RunError(error);
+    agree_on_run_error(comm, [&] {
+      if (!write_pieces(tmp, start, payload, starts, before, crcs, comm))
+        throw RunError("cannot write checkpoint " + tmp.string() + " through MPI-IO");
+    });
 
     for (unsigned int b = 0; b < n_blocks; ++b)
       crcs[b] = combined_crc32(comm, crcs[b], mine[b]);
-    if (root)
-      try
-        {
-          finish_file(tmp, file, directory, crcs);
-        }
-      catch (const RunError &e)
-        {
-          error = e.what();
-        }
-    if (!(error = agree_on_error(comm, error)).empty())
-      throw RunError(error);
+    agree_on_run_error(comm, [&] {
+      if (root)
+        finish_file(tmp, file, directory, crcs);
+    });
     return file.string();
   }
 

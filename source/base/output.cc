@@ -86,16 +86,26 @@ namespace granular_dg
       throw RunError("cannot write " + filename + " (disk full or not writable)");
   }
 
-  std::string
-  agree_on_error(const MPI_Comm comm, std::string error)
+  void
+  agree_on_run_error(const MPI_Comm comm, const std::function<void()> &f, const std::string &suffix)
   {
-    if (Utilities::MPI::n_mpi_processes(comm) == 1)
-      return error;
-    const unsigned int rank   = Utilities::MPI::this_mpi_process(comm);
-    const unsigned int failed = Utilities::MPI::min(error.empty() ? ~0u : rank, comm);
-    if (failed == ~0u)
-      return "";
-    return Utilities::MPI::broadcast(comm, error, failed);
+    std::string error;
+    try
+      {
+        f();
+      }
+    catch (const RunError &e)
+      {
+        error = e.what();
+      }
+    if (Utilities::MPI::n_mpi_processes(comm) > 1)
+      {
+        const unsigned int rank   = Utilities::MPI::this_mpi_process(comm);
+        const unsigned int failed = Utilities::MPI::min(error.empty() ? ~0u : rank, comm);
+        error = failed == ~0u ? "" : Utilities::MPI::broadcast(comm, error, failed);
+      }
+    if (!error.empty())
+      throw RunError(error + suffix);
   }
 
   void

@@ -288,28 +288,22 @@ namespace granular_dg
     TimerOutput::Scope scope(*timer, "output");
     // a file that cannot be written, on any rank, stops every rank (after
     // the collective parts: the snapshot, then the time series' values)
-    std::string error;
-    const auto  agree = [&] {
-      if (!(error = agree_on_error(MPI_COMM_WORLD, error)).empty())
-        throw RunError(error + " at " + info.time_name + " = " + format_number(t));
-    };
-    SnapshotFiles files;
+    const std::string at = " at " + info.time_name + " = " + format_number(t);
+    SnapshotFiles     files;
     last_record_time = t; // (on every rank, also if a write fails: no retry)
-    try
-      {
+    agree_on_run_error(
+      MPI_COMM_WORLD,
+      [&] {
         files          = problem.write_snapshot(params.directory, n_snapshots++, t);
         last_main_file = files.main_file;
-      }
-    catch (const RunError &e)
-      {
-        error = e.what();
-      }
-    agree();
+      },
+      at);
     std::vector<double> row{t, double(step), dt};
     for (const double v : problem.timeseries_values(t))
       row.push_back(v);
-    try
-      {
+    agree_on_run_error(
+      MPI_COMM_WORLD,
+      [&] {
         if (!files.pvd_entry.empty())
           {
             snapshots.emplace_back(t, files.pvd_entry);
@@ -324,12 +318,8 @@ namespace granular_dg
           }
         if (root)
           timeseries.row(row);
-      }
-    catch (const RunError &e)
-      {
-        error = e.what();
-      }
-    agree();
+      },
+      at);
   }
 
   bool
@@ -554,17 +544,8 @@ namespace granular_dg
   void
   TimeLoop::write_summary() const
   {
-    std::string error;
-    try
-      {
-        granular_dg::write_summary(params.directory, info, result);
-      }
-    catch (const RunError &e)
-      {
-        error = e.what();
-      }
-    if (!(error = agree_on_error(MPI_COMM_WORLD, error)).empty())
-      throw RunError(error);
+    agree_on_run_error(MPI_COMM_WORLD,
+                       [&] { granular_dg::write_summary(params.directory, info, result); });
   }
 
   void

@@ -5,6 +5,7 @@
 #include <chrono>
 #include <cstdint>
 #include <fstream>
+#include <functional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -54,10 +55,12 @@ namespace granular_dg
     require_written(out, filename);
   }
 
-  /// An error message of any rank of comm as one message on every rank (the
-  /// lowest failed rank's; "" if none): collective.
-  std::string
-  agree_on_error(MPI_Comm comm, std::string error);
+  /// f() on this rank, then collective: a RunError that f threw on any rank
+  /// of comm is thrown on every rank, with the lowest failed rank's message
+  /// and then suffix, so that all ranks stop together.
+  void
+  agree_on_run_error(MPI_Comm comm, const std::function<void()> &f,
+                     const std::string &suffix = "");
 
   /// A flat JSON object with keys in insertion order (summary.json).
   class JsonObject
