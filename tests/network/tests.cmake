@@ -321,14 +321,30 @@ granular_dg_test(network/rank_equivalence_city_p0 EXE ${rank_equivalence}
 set_tests_properties(network/rank_equivalence_city network/rank_equivalence_chain
   network/rank_equivalence_city_p0 PROPERTIES RUN_SERIAL TRUE)
 
-# A failure found on rank 1 of 2 (the partition puts Vertex 22 there): the
-# city grid at degree 0 with vertex cells of 0.05 the paper's width blows up
-# at a vertex; every rank stops with the one-rank run's status (the vertex,
-# time, step and value), exit 3, the last good state written.
-granular_dg_test(network/failure_on_rank_1 PRM ../prm/network_city_grid.prm ${city_files} MPI 2 EXIT 3
+# A vertex cell 5 times narrower than the paper's (width factor 0.2 < 2 x
+# CFL 0.5): the edges' time step would make its update (4.1b) non-monotone
+# (Example 7.3 then grows to 1e61 by t = 0.5); the time step also keeps
+# dt sum max|f'| <= dx_0 there (1280 steps instead of 256), and the run
+# stays stable: the vertex reaches its exact value 1 and the L1 error
+# against the exact solution is 0.0335 (0.0251 with the paper's cell).
+granular_dg_test(network/narrow_vertex_7_3 PRM ../prm/network_example_7_3.prm
+  ARGS --set "Network/vertex width factor=0.2" --set "Output/write vtu=false"
+  COMPARE summary.json:status,diagnostics/vertex_value_final,diagnostics/l1_error NUMDIFF -r 1e-6)
+# ... and says so at set-up, in one line naming the vertex and its factor.
+granular_dg_test(network/narrow_vertex_warning PRM ../prm/network_two_stars.prm
+  ARGS --set "Network/Vertex 2/width factor=0.3" --set "Time stepping/final time=0.01"
+       --set "Output/output times=0.01" EXPECT_FILES out/summary.json)
+
+# A failure found on rank 1 of 2 (the partition puts Edge 22 there): the
+# city grid at degree 0 whose Edge 22 inflow data turn NaN at t = 0.35
+# (network/city_grid_nan_inflow.csv); every rank stops with the one-rank
+# run's status (the edge, position, time, step and value), exit 3, the last
+# good state written.
+granular_dg_test(network/failure_on_rank_1 PRM ../prm/network_city_grid.prm MPI 2 EXIT 3
+  COPY network/city_grid_nan_inflow.csv ../prm/network_city_grid_vertices.csv
   ARGS --set "Network/cells per unit length=8" --set Discretization/degree=0
-       --set "Time stepping/CFL number=1" --set Limiter/scheme=none
-       --set "Network/vertex width factor=0.05"
+       --set "Time stepping/CFL number=0.5" --set Limiter/scheme=none
+       --set "Network/graph file=city_grid_nan_inflow.csv"
   COMPARE summary.json:status,final_time NUMDIFF -r 1e-9 LABELS mpi)
 # Subcell blending on every edge (Limiter/subcell blending, no limiter):
 # Burgers' shock through the vertex, P2; mass is conserved to round-off

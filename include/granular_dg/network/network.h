@@ -173,7 +173,9 @@ namespace granular_dg::network
     void
     check_initial_state(double t) override;
     /// The CFL step of the current state: cfl * min h / max |f'|, the
-    /// vertex values included (condition (4.7) for cfl <= 1/2).
+    /// vertex values included (condition (4.7) for cfl <= 1/2), and no
+    /// longer than the monotonicity bound dt sum max|f'| <= dx_0 of the
+    /// vertex cells narrower than that step covers (narrow_vertex_rate()).
     double
     time_step(double t) override;
     /// One step of the integrator (limiter after every stage); throws
@@ -293,6 +295,10 @@ namespace granular_dg::network
     /// the outer states of the edge ends at time: the values vertex_u0 of
     /// their vertices, the far-end data
     void   set_end_states(double time) const;
+    /// The largest sum over the ends of max(|f'(u_0)|, |f'(trace)|) / dx_0
+    /// of this rank's narrow vertices (0 without them): 1 / (the longest
+    /// step for which their update (4.1b) is monotone).
+    double narrow_vertex_rate() const;
     /// the local number of edge k in EdgeLines (this rank's edges)
     unsigned int local(const unsigned int k) const { return local_edge[k]; }
     /// the trace of edge k at x = 0 (at_end false) or x = L (at_end true)
@@ -399,6 +405,14 @@ namespace granular_dg::network
     mutable std::vector<double>                      end_traces;
     /// whether a vertex of this rank has no volume (balanced every stage)
     bool                                             without_volume = false;
+    /// This rank's vertices whose cell the edges' CFL step does not cover:
+    /// with a flux bound a_k <= max|f'|/h over edge k (the CFL scan's),
+    /// dt sum_k a_k <= cfl sum_k h_k = 2 cfl dx_0 / width factor, so a
+    /// vertex needs a bound of its own when its width factor < 2 cfl (the
+    /// paper's factor 1 at CFL 1/2 does not); whether any rank has such a
+    /// vertex, and one that is cut (collective decisions in time_step()).
+    std::vector<unsigned int>                        narrow_vertices;
+    bool                                             narrow_anywhere = false, narrow_cut = false;
     /// the end faces of this rank's edges (2 local edge + side) at each
     /// vertex, the (edge, side) of the free ends and of those among them
     /// with Dirichlet data

@@ -123,7 +123,19 @@ namespace granular_dg::network
     exchanged.assign(ranks->n_slots(), 0.);
     exchanged_flux.assign(ranks->n_slots(), 0.);
     for (const unsigned int v : ranks->vertices())
-      without_volume = without_volume || junctions[v].width() == 0;
+      {
+        without_volume = without_volume || junctions[v].width() == 0;
+        if (junctions[v].width() > 0 && net.vertices[v].width_factor < 2 * method.cfl)
+          {
+            narrow_vertices.push_back(v);
+            for (auto i = vertex_ends.first[v]; i < vertex_ends.first[v + 1]; ++i)
+              narrow_cut = narrow_cut || vertex_ends.face[i] < 0;
+          }
+      }
+    double narrow[2] = {double(narrow_vertices.size()), double(narrow_cut)};
+    ranks->max(narrow, 2);
+    narrow_anywhere = narrow[0] > 0;
+    narrow_cut      = narrow[1] > 0;
     u.vertices.assign(net.vertices.size(), 0.);
     vertex_u0.assign(net.vertices.size(), 0.);
     u.edges.assign(lines->size(), 0.);
@@ -580,14 +592,20 @@ namespace granular_dg::network
     const internal::Scan edges = principle ? internal::scan<true>(s.edges) : internal::scan<false>(s.edges);
     if (principle && edges.finite)
       check_maximum_principle(s, stage_time, edges.lo, edges.hi);
-    if (!edges.finite)
-      // report the first cell whose modes are not finite
-      for (const unsigned int k : ranks->edges())
-        for (unsigned int c = 0; c < edge_cells[k]; ++c)
-          for (unsigned int m = 0; m <= method.degree; ++m)
-            if (!std::isfinite(s.edges[lines->index(local(k), c) + m]))
-              throw failure(stage_time, int(k), (c + 0.5) * edge_h[k],
-                            s.edges[lines->index(local(k), c)], "state is not finite");
+    if (edges.finite)
+      return;
+    // non-finite far-end data are the cause where there are any
+    for (const auto &face : data_faces)
+      if (const double g = lines->outer_state(local(face.first), face.second); !std::isfinite(g))
+        throw failure(stage_time, int(face.first), far_end_point(face), g,
+                      "far-end data not finite at t = " + format_number(data_time));
+    // else: the first cell whose modes are not finite
+    for (const unsigned int k : ranks->edges())
+      for (unsigned int c = 0; c < edge_cells[k]; ++c)
+        for (unsigned int m = 0; m <= method.degree; ++m)
+          if (!std::isfinite(s.edges[lines->index(local(k), c) + m]))
+            throw failure(stage_time, int(k), (c + 0.5) * edge_h[k],
+                          s.edges[lines->index(local(k), c)], "state is not finite");
   }
 
   template <typename Law>
@@ -599,7 +617,41 @@ namespace granular_dg::network
     for (const auto &[face, v] : vertex_faces)
       face_values[face] = u.vertices[v];
     const double speed_over_h = lines->max_speed_over_h(u.edges.data(), face_values.data());
-    return method.time_step(ranks->max(speed_over_h), "t", time);
+    if (!narrow_anywhere)
+      return method.time_step(ranks->max(speed_over_h), "t", time);
+    // (one reduction for both rates)
+    double rates[2] = {speed_over_h, narrow_vertex_rate()};
+    ranks->max(rates, 2);
+    const double dt = method.time_step(rates[0], "t", time);
+    return dt * rates[1] > 1 ? 1 / rates[1] : dt;
+  }
+
+  template <typename Law>
+  double
+  NetworkProblem<Law>::narrow_vertex_rate() const
+  {
+    // (a monotone flux F(u_l, u_r) changes with u_0 by at most the largest
+    // |f'| between u_0 and the trace: at one of them for the convex and
+    // concave laws)
+    if (narrow_cut)
+      exchange_traces(u);
+    double rate = 0;
+    for (const unsigned int v : narrow_vertices)
+      {
+        const auto  &ends = junctions[v].ends();
+        const double u0   = u.vertices[v];
+        double       sum  = 0;
+        for (auto i = vertex_ends.first[v]; i < vertex_ends.first[v + 1]; ++i)
+          {
+            const long   face = vertex_ends.face[i];
+            const double tr   = face < 0 ? exchanged[-1 - face] :
+                                           lines->trace(u.edges.data(), face / 2, face % 2);
+            const Law   &f    = laws[ends[i - vertex_ends.first[v]].edge];
+            sum += std::max(std::abs(f.derivative(u0)), std::abs(f.derivative(tr)));
+          }
+        rate = std::max(rate, sum / junctions[v].width());
+      }
+    return rate;
   }
 
   template <typename Law>

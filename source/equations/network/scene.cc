@@ -313,6 +313,40 @@ namespace granular_dg::network
                 << std::endl;
     }
 
+    /// One warning line on stderr (rank 0) when a vertex cell is narrower
+    /// than the edges' CFL step covers (width factor < 2 x CFL number; the
+    /// largest CFL number of a study): the time step then also follows the
+    /// cell's own bound (NetworkProblem::time_step()).
+    void
+    warn_of_narrow_vertices(const Case &c, const RunParameters &common)
+    {
+      double cfl = c.method.cfl;
+      for (const double x : common.convergence ? common.convergence_cfl : std::vector<double>())
+        cfl = std::max(cfl, x);
+      const auto  &vertices = c.input.graph.vertices;
+      unsigned int narrowest = 0, count = 0;
+      for (unsigned int v = 0; v < vertices.size(); ++v)
+        {
+          const double factor = vertices[v].width_factor;
+          if (factor > 0 && factor < 2 * cfl)
+            {
+              if (count == 0 || factor < vertices[narrowest].width_factor)
+                narrowest = v;
+              ++count;
+            }
+        }
+      if (count == 0 || Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) != 0)
+        return;
+      std::cerr << "granular_dg: warning: "
+                << (c.input.graph.is_star() ? std::string("the vertex") : vertices[narrowest].label)
+                << " has a cell of width factor " << format_number(vertices[narrowest].width_factor)
+                << " < 2 x CFL number = " << format_number(2 * cfl)
+                << (count > 1 ? " (and " + std::to_string(count - 1) + " more vertices)" :
+                                std::string())
+                << ": its update (4.1b) is not monotone at the edges' time step, so the step "
+                << "also keeps dt sum max|f'| <= dx_0 there (more steps)" << std::endl;
+    }
+
     void
     Case::bind(ParameterBinding &b, const RunParameters &common,
                const dg::DiscretizationParameters &method)
@@ -416,6 +450,7 @@ namespace granular_dg::network
                                double(*std::max_element(common.convergence_cells.begin(),
                                                         common.convergence_cells.end())) :
                                c.options.cells_per_unit_length);
+      warn_of_narrow_vertices(c, common);
       {
         const auto    n     = edge_cells(c.input.graph, c.options.cells_per_unit_length);
         unsigned long cells = 0;
