@@ -215,9 +215,10 @@ granular_dg_test(network/ring_mass_dg PRM network/ring.prm ${ring_files}
   COMPARE summary.json:diagnostics/mass_balance_residual_max,diagnostics/mass_step_residual_max NUMDIFF -a 1e-13 -r 0)
 
 # Graph validation: one line naming the file, line, edge or vertex; exit 2
-# (hex_id: a vertex id written 0x1 is not an integer id; isolated_vertex: a
+# (hex_id: a vertex id written 0x1 is not an integer id; subnormal: a flux
+# parameter of 1e-308 is not of normal magnitude; isolated_vertex: a
 # vertex only the vertex file lists is blamed on that file and its line).
-foreach(bad duplicate_id negative_length nonfinite self_loop bad_header hex_id)
+foreach(bad duplicate_id negative_length nonfinite subnormal self_loop bad_header hex_id)
   granular_dg_test(network/graph_${bad} PRM network/ring.prm
     COPY network/ring_${bad}.csv network/ring_vertices.csv
     ARGS --set "Network/graph file=ring_${bad}.csv" EXIT 2 KEEP_OUTPUT)
@@ -242,12 +243,22 @@ granular_dg_test(network/graph_bom PRM network/ring.prm
   NUMDIFF -r 1e-12 -a 0)
 granular_dg_test(network/graph_file_and_vertex_section PRM network/ring.prm ${ring_files}
   ARGS --set "Network/Vertex 2/width factor=0" EXIT 2 KEEP_OUTPUT)
+# An Edge N entry beside a graph file would be ignored (the file's length
+# kept): refused, naming the entry the user set.
+granular_dg_test(network/graph_file_and_edge_section PRM network/ring.prm ${ring_files}
+  ARGS --set "Network/Edge 2/length=3" EXIT 2 KEEP_OUTPUT)
+# An Edge N section with entries but no direction and no from/to describes
+# no edge: refused instead of ignored.
+granular_dg_test(network/edge_section_without_ends PRM ../prm/network_two_stars.prm
+  ARGS --set "Network/Edge 7/length=3" EXIT 2 KEEP_OUTPUT)
 granular_dg_test(network/edge_self_loop PRM ../prm/network_two_stars.prm
   ARGS --set "Network/Edge 3/to=1" EXIT 2 KEEP_OUTPUT)
 granular_dg_test(network/edge_direction_and_from PRM ../prm/network_two_stars.prm
   ARGS --set "Network/Edge 3/direction=in" EXIT 2 KEEP_OUTPUT)
+# A Vertex N section beyond the vertices the edges name: the message names
+# the entry set (Vertex 5 of a two-vertex graph had been blamed on Vertex 3).
 granular_dg_test(network/vertex_without_edges PRM ../prm/network_two_stars.prm
-  ARGS --set "Network/Vertex 3/position=1, 1" EXIT 2 KEEP_OUTPUT)
+  ARGS --set "Network/Vertex 5/width factor=0" EXIT 2 KEEP_OUTPUT)
 granular_dg_test(network/edge_unknown_vertex PRM ../prm/network_two_stars.prm
   ARGS --set "Network/Edge 3/to=9" EXIT 2 KEEP_OUTPUT)
 

@@ -267,7 +267,8 @@ namespace granular_dg::network
     csv_number(const std::string &text, const std::string &where, const std::string &name)
     {
       const auto x = as_number(text);
-      require(x && std::isfinite(*x), where + name, text, "a finite number");
+      require(x && std::isfinite(*x), where + name, text,
+              "a finite number of normal magnitude (0 or 2.2e-308 <= |x| <= 1.8e308)");
       return *x;
     }
 
@@ -276,6 +277,43 @@ namespace granular_dg::network
     used(const EdgeSection &e)
     {
       return e.direction != "none" || e.from != "none" || e.to != "none";
+    }
+
+    /// the first entry of an Edge N section that is not its default, as
+    /// (name, value); none for a section left alone
+    std::optional<std::pair<std::string, std::string>>
+    first_given(const EdgeSection &e)
+    {
+      const EdgeSection d;
+      const auto        number = [](const double x) { return format_number(x); };
+      for (const auto &[name, value, unset] :
+           {std::tuple<std::string, std::string, std::string>{"direction", e.direction, d.direction},
+            {"from", e.from, d.from},
+            {"to", e.to, d.to},
+            {"length", number(e.length), number(d.length)},
+            {"flux", e.flux, d.flux},
+            {"advection speed", number(e.advection_speed), number(d.advection_speed)},
+            {"alpha", number(e.alpha), number(d.alpha)},
+            {"initial data", e.initial_data, d.initial_data},
+            {"far end", e.far_end, d.far_end},
+            {"far end data", e.far_end_data, d.far_end_data}})
+        if (value != unset)
+          return std::pair(name, value);
+      return std::nullopt;
+    }
+
+    /// the first entry of a Vertex N section that is set, as (name, value)
+    std::optional<std::pair<std::string, std::string>>
+    first_given(const VertexSection &v)
+    {
+      for (const auto &[name, value, unset] :
+           {std::tuple<std::string, std::string, std::string>{"width factor", v.width_factor,
+                                                               "default"},
+            {"initial value", v.initial_value, "default"},
+            {"position", v.position, ""}})
+        if (value != unset)
+          return std::pair(name, value);
+      return std::nullopt;
     }
 
     void
@@ -369,20 +407,14 @@ namespace granular_dg::network
       {
         // the file replaces the sections: they must be unused
         for (unsigned int i = 0; i < max_edge_sections; ++i)
-          require(!used(edge_sections[i]), "Network/" + section("Edge", i) + "/from", "(set)",
-                  "no Edge N sections with a Network/graph file: give the edges in one place");
+          if (const auto given = first_given(edge_sections[i]))
+            require(false, "Network/" + section("Edge", i) + "/" + given->first, given->second,
+                    "unset with a Network/graph file: give the edges in one place (the file)");
         for (unsigned int i = 0; i < max_vertex_sections; ++i)
-          {
-            const VertexSection &v = vertex_sections[i];
-            for (const auto &[entry, text, unset] :
-                 {std::tuple<std::string, std::string, std::string>{"width factor",
-                                                                   v.width_factor, "default"},
-                  {"initial value", v.initial_value, "default"},
-                  {"position", v.position, ""}})
-              require(text == unset, "Network/" + section("Vertex", i) + "/" + entry, text,
-                      "unset with a Network/graph file: give the vertices' data in "
-                      "Network/vertex file");
-          }
+          if (const auto given = first_given(vertex_sections[i]))
+            require(false, "Network/" + section("Vertex", i) + "/" + given->first, given->second,
+                    "unset with a Network/graph file: give the vertices' data in "
+                    "Network/vertex file");
         read_edge_file("Network/graph file", graph_file);
         if (!vertex_file.empty())
           read_vertex_file("Network/vertex file", vertex_file,
@@ -553,9 +585,15 @@ namespace granular_dg::network
     for (unsigned int i = 0; i < max_edge_sections; ++i)
       {
         const EdgeSection &given = edge_sections[i];
+        const std::string  at    = "Network/" + section("Edge", i) + "/";
         if (!used(given))
-          continue;
-        const std::string at   = "Network/" + section("Edge", i) + "/";
+          {
+            if (const auto set = first_given(given))
+              require(false, at + set->first, set->second,
+                      "unset in an Edge N section without direction or from/to (there is no " +
+                        section("Edge", i) + "): give its direction, or its from and to");
+            continue;
+          }
         const EdgeKind    kind = direction_names.parse(at + "direction", given.direction);
         Edge              e;
         e.label = section("Edge", i);
@@ -600,11 +638,12 @@ namespace granular_dg::network
   void
   GraphInput::vertices_from_sections(unsigned int n_vertices)
   {
-    // the vertices: those the edges name, and every section that sets something
-    for (unsigned int i = 0; i < max_vertex_sections; ++i)
-      if (vertex_sections[i].width_factor != "default" ||
-          vertex_sections[i].initial_value != "default" || !vertex_sections[i].position.empty())
-        n_vertices = std::max(n_vertices, i + 1);
+    // the vertices: those the edges name; a section beyond them has no edges
+    for (unsigned int i = n_vertices; i < max_vertex_sections; ++i)
+      if (const auto set = first_given(vertex_sections[i]))
+        require(false, "Network/" + section("Vertex", i) + "/" + set->first, set->second,
+                "unset: no edge names " + section("Vertex", i) + " (the highest the edges name is " +
+                  section("Vertex", n_vertices - 1) + ")");
     for (unsigned int i = 0; i < n_vertices; ++i)
       {
         const VertexSection &given = vertex_sections[i];
