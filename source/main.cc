@@ -8,6 +8,7 @@
 
 #include <granular_dg/base/checkpoint.h>
 #include <granular_dg/base/errors.h>
+#include <granular_dg/base/output.h>
 #include <granular_dg/base/parameters.h>
 #include <granular_dg/base/scene.h>
 #include <granular_dg/version.h>
@@ -237,7 +238,10 @@ main(int argc, char **argv)
   catch (const InputError &e)
     {
       if (root)
-        std::cerr << "granular_dg: error: " << e.what() << std::endl;
+        {
+          std::cerr << "granular_dg: error: " << e.what() << std::endl;
+          abandon_new_output();
+        }
       return 2;
     }
   catch (const RunError &e)

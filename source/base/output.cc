@@ -234,7 +234,17 @@ namespace granular_dg
     {
       std::set<std::string> names;
       std::ofstream         file;
+      /// begun by this run (not continued by a resume)
+      bool fresh = false;
     };
+
+    /// the output directories this process created
+    std::set<fs::path> &
+    created_directories()
+    {
+      static std::set<fs::path> d;
+      return d;
+    }
 
     std::map<fs::path, Manifest> &
     manifests()
@@ -312,6 +322,9 @@ namespace granular_dg
     {
       require(!directory.empty(), "Output/directory", directory, "a directory name");
       std::error_code ec;
+      for (fs::path d = fs::absolute(directory).lexically_normal(); !fs::exists(d, ec);
+           d = d.parent_path())
+        created_directories().insert(d);
       fs::create_directories(directory, ec);
       require(!ec && fs::is_directory(directory), "Output/directory", directory,
               "a directory that can be created (" + ec.message() + ")");
@@ -325,10 +338,29 @@ namespace granular_dg
     Manifest      &m    = manifests()[root];
     m.file.close();
     m.names.clear();
+    m.fresh = !continue_existing;
     if (continue_existing)
       for (const auto &name : read_manifest(root))
         m.names.insert(name);
     m.file.open(root / manifest_name, continue_existing ? std::ios::app : std::ios::trunc);
+  }
+
+  void
+  abandon_new_output()
+  {
+    for (auto &[root, m] : manifests())
+      {
+        if (!m.fresh || !(m.names.empty() || (m.names.size() == 1 && m.names.count("parameters.prm"))))
+          continue;
+        m.file.close();
+        std::error_code ec;
+        for (const char *name : {"parameters.prm", manifest_name, ".lock"})
+          fs::remove(root / name, ec);
+        // and the directories created for it, as far as they are empty
+        // (remove() does not delete a directory with files)
+        for (fs::path d = root; created_directories().count(d) && fs::remove(d, ec);)
+          d = d.parent_path();
+      }
   }
 
   void

@@ -128,7 +128,18 @@ namespace granular_dg
         resume(c);
       }
     else
-      t = problem.initialize();
+      try
+        {
+          t = problem.initialize();
+        }
+      catch (const RunError &e)
+        {
+          // a failure at set-up: summary.json has the status (no state yet)
+          result.status = std::string("failed: ") + e.what();
+          if (write_files)
+            write_summary();
+          throw;
+        }
     first_step = step;
     // a run that writes nothing (a convergence study) steps straight to the end
     output_times =

@@ -378,9 +378,11 @@ granular_dg_test(network/blended_cells_7_5 PRM ../prm/network_example_7_5.prm
 # A junction without a stationary value (two roads in, none out) under the
 # default vertex initial value = stationary: exit 3 at set-up, advice to give
 # the vertex an initial value (it has volume: "use a vertex with volume"
-# would be wrong); and an initial value that makes it run.
+# would be wrong), summary.json with that status; and an initial value that
+# makes it run.
 granular_dg_test(network/stationary_dead_end PRM network/dead_end.prm
-  COPY network/dead_end.csv EXIT 3 EXPECT_FILES out/parameters.prm NUMDIFF -a 0 -r 0)
+  COPY network/dead_end.csv EXIT 3 EXPECT_FILES out/parameters.prm out/summary.json
+  NUMDIFF -a 0 -r 0)
 granular_dg_test(network/dead_end_filling PRM network/dead_end.prm
   COPY network/dead_end.csv ARGS --set "Network/vertex initial value=1"
   COMPARE summary.json:status NUMDIFF -a 0 -r 0)

@@ -4,7 +4,9 @@
 // CSV file each give a RunError naming the file, not a silent success. In an
 // output directory: a file the directory's manifest does not list (a user's)
 // is refused before it is touched, and stays as it was; a file this run
-// wrote may be written again. Exits 1 when anything is wrong.
+// wrote may be written again. Bad input found after the directory was
+// prepared removes what preparing wrote, and nothing else. Exits 1 when
+// anything is wrong.
 #include <deal.II/base/exceptions.h>
 
 #include <granular_dg/base/errors.h>
@@ -96,5 +98,31 @@ main()
   const bool kept = read(directory / "profile-0001.csv") == "the user's own\n";
   failed |= !kept;
   std::cout << "the user's file is unchanged: " << (kept ? "yes" : "NO") << std::endl;
+
+  // Bad input found after the directory was prepared (abandon_new_output()):
+  // what preparing wrote goes, with the directories it created; a user's
+  // file, a directory that existed and a run that wrote more stay.
+  const auto expect = [&](const std::string &what, const bool ok) {
+    failed |= !ok;
+    std::cout << what << ": " << (ok ? "yes" : "NO") << std::endl;
+  };
+  const auto prepare = [](const fs::path &d) {
+    prepare_output_directory(d.string(), false);
+    write_to_file((d / "parameters.prm").string(), [](std::ostream &out) { out << "set a = 1\n"; });
+  };
+  fs::remove_all("abandoned");
+  fs::create_directories("abandoned/existing");
+  std::ofstream("abandoned/existing/notes.txt") << "the user's own\n";
+  prepare("abandoned/new/deeper");
+  prepare("abandoned/existing");
+  prepare("abandoned/wrote_more");
+  write_to_file("abandoned/wrote_more/summary.json", [](std::ostream &out) { out << "{}\n"; });
+  abandon_new_output();
+  expect("a new directory (and its new parent) removed", !fs::exists("abandoned/new"));
+  expect("an existing directory kept with the user's file only",
+         fs::exists("abandoned/existing/notes.txt") &&
+           std::distance(fs::directory_iterator("abandoned/existing"), fs::directory_iterator()) == 1);
+  expect("a run that wrote more left alone", fs::exists("abandoned/wrote_more/parameters.prm") &&
+                                               fs::exists("abandoned/wrote_more/summary.json"));
   return failed ? 1 : 0;
 }

@@ -145,6 +145,14 @@ namespace granular_dg
   void
   begin_manifest(const std::string &directory, bool continue_existing);
 
+  /// Bad input found after the output directory was prepared (exit 2:
+  /// nothing written): remove what preparing it wrote (parameters.prm, the
+  /// manifest and the lock file) and the directory if this process created
+  /// it and it is empty. Directories of a run that wrote more, or that a
+  /// resume continues, are left alone. Rank 0 (the one that prepares).
+  void
+  abandon_new_output();
+
   /// "1.5 MB", "320 kB", "12 B"
   std::string
   format_bytes(double bytes);

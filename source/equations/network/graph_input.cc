@@ -588,10 +588,15 @@ namespace granular_dg::network
         const std::string  at    = "Network/" + section("Edge", i) + "/";
         if (!used(given))
           {
-            if (const auto set = first_given(given))
+            // (direction = none written out leaves an edge out on purpose)
+            const bool left_out = !parameter_origin(at + "direction").empty() ||
+                                  !parameter_origin(at + "from").empty() ||
+                                  !parameter_origin(at + "to").empty();
+            if (const auto set = first_given(given); set && !left_out)
               require(false, at + set->first, set->second,
                       "unset in an Edge N section without direction or from/to (there is no " +
-                        section("Edge", i) + "): give its direction, or its from and to");
+                        section("Edge", i) + "): give its direction, or its from and to (or " +
+                        "direction = none to leave the edge out)");
             continue;
           }
         const EdgeKind    kind = direction_names.parse(at + "direction", given.direction);

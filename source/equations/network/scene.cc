@@ -451,6 +451,11 @@ namespace granular_dg::network
                                                         common.convergence_cells.end())) :
                                c.options.cells_per_unit_length);
       warn_of_narrow_vertices(c, common);
+      const std::size_t n_edges = c.input.graph.edges.size();
+      require(Utilities::MPI::n_mpi_processes(MPI_COMM_WORLD) <= n_edges, "MPI ranks",
+              Utilities::MPI::n_mpi_processes(MPI_COMM_WORLD),
+              "at most the number of edges, " + std::to_string(n_edges) +
+                " (each rank computes whole edges)");
       {
         const auto    n     = edge_cells(c.input.graph, c.options.cells_per_unit_length);
         unsigned long cells = 0;
