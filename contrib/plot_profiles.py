@@ -26,9 +26,13 @@ def numbers(text):
 def runs(a):
     fig, ax = plot.subplots(figsize=(10, 4))
     for i, (d, name) in enumerate(a.runs):
-        for t in outputs.profiles(d):
-            if t.time != 0 and (not a.times or any(abs(t.time - s) < 1e-9 for s in numbers(a.times))):
-                ax.plot(t["x"], t[a.column], plot.STYLES[i % 4], lw=1, label="%s t=%g" % (name, t.time))
+        shown = [t for t in outputs.profiles(d)
+                 if t.time != 0 and (not a.times or any(abs(t.time - s) < 1e-9 for s in numbers(a.times)))]
+        if not shown:
+            raise outputs.OutputError("%s has no profile-NNNN.csv %s" % (
+                d, "at t = " + a.times if a.times else "after t = 0 (a 1D run's profiles)"))
+        for t in shown:
+            ax.plot(t["x"], t[a.column], plot.STYLES[i % 4], lw=1, label="%s t=%g" % (name, t.time))
     if a.xlim:
         ax.set_xlim(*numbers(a.xlim))
     plot.label(ax, "x", a.column, a.title, legend=7)
@@ -53,6 +57,9 @@ def layered(a):
 
 
 def slices(a):
+    for d, _ in a.runs:
+        if not outputs.slices(d):
+            raise outputs.OutputError("%s has no slice-NNNN.csv (a 2D layered run with Output/slice y)" % d)
     n = len(outputs.slices(a.runs[0][0]))
     fig, axes = plot.subplots(n, 1, figsize=(10, 2.3 * n), sharex=True, squeeze=False)
     for k, (d, name) in enumerate(a.runs):

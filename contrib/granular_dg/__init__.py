@@ -39,4 +39,8 @@ def main(doc, commands):
     for name, (function, spec) in commands.items():
         add(choices.add_parser(name), spec).set_defaults(function=function)
     a = top.parse_args()
-    a.function(a)
+    from .outputs import OutputError
+    try:
+        a.function(a)
+    except OutputError as e:  # missing or malformed outputs: one line, exit 2
+        top.exit(2, "%s: error: %s\n" % (top.prog, e))

@@ -10,11 +10,12 @@ from pathlib import Path
 
 import numpy as np
 
-from .outputs import NUMBER, read_table
+from .outputs import NUMBER, OutputError, read_table
 
 # keys and columns, by whole name, that measure the process: times (NAME_s), rates, peak
-# memory, the step a run resumed from (physics such as wall_work stays compared)
-TIMING = re.compile(r"^(\w*_s|dof_updates\w*|peak_rss\w*|resumed_from_step)$")
+# memory and the memory block (allocations, which a resumed run makes in another order),
+# the step a run resumed from (physics such as wall_work stays compared)
+TIMING = re.compile(r"^(\w*_s|dof_updates\w*|peak_rss\w*|memory|\w*_bytes_per_dof|resumed_from_step)$")
 SKIPPED = re.compile(r"(^|/)checkpoints/|\.tmp$|\.log$|(^|/)(times\.txt|benchmark\.json)$")
 
 
@@ -98,6 +99,9 @@ def compare_trees(before, after, tol=1e-13):
                 if name.endswith((".csv", ".json", ".vtu", ".pvtu", ".pvd", ".prm"))}
     lines, bad, worst_all, n, bitwise = [], [], 0.0, 0, True
     old, new = files(before), files(after)
+    if not old and not new:
+        raise OutputError("%s and %s hold no output files (CSV, JSON, VTU, PVD, prm) to compare"
+                          % (before, after))
     for r in sorted(r for r in old | new if not SKIPPED.search(r)):
         if r not in new or r not in old:
             bad.append("%s: %s after" % (r, "missing" if r in old else "new"))

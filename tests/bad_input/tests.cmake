@@ -41,3 +41,17 @@ granular_dg_test(bad_input/previous_run EXE ${TEST_PYTHON}
   ARGS ${CMAKE_CURRENT_SOURCE_DIR}/bad_input/previous_run.py $<TARGET_FILE:granular_dg>
        ${CMAKE_CURRENT_SOURCE_DIR}/input/base.prm
   COMPARE stdout KEEP_OUTPUT NUMDIFF -a 0 -r 0)
+# A periodic side without its partner: the periodic side is named, and its
+# partner's condition (the message had named the other side, contradicting
+# itself).
+granular_dg_test(bad_input/periodic_without_partner PRM ${base}
+  ARGS --set "Boundary conditions/left=wall" EXIT 2 KEEP_OUTPUT NUMDIFF -a 0 -r 0)
+# The line engine in 2D (it had been ignored: the run used matrix_free and
+# parameters.prm said line).
+granular_dg_test(bad_input/engine_line_2d PRM bad_input/../hardening/linear_wave_2d.prm
+  ARGS --set Discretization/engine=line EXIT 2 KEEP_OUTPUT NUMDIFF -a 0 -r 0)
+# A 2D mesh too large for memory through its cells y: named as such (it had
+# been 'Mesh/cells x', from the file, with cells y in brackets).
+# MemAvailable varies between runs: -r 1 on the numbers.
+granular_dg_test(bad_input/memory_cells_y PRM bad_input/../hardening/linear_wave_2d.prm
+  ARGS --set "Mesh/cells y=400000000" EXIT 2 KEEP_OUTPUT NUMDIFF -a 0 -r 1)

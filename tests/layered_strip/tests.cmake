@@ -19,6 +19,15 @@ foreach(variant aware naive)
          --set Limiter/indicator=everywhere --set "Output/profile points per cell=1" --set "Output/write vtu=false"
     COMPARE profile-0003.csv NUMDIFF -a 1e-7 -r 0)
 endforeach()
+# The layers repeat every 2 l: an origin 5 10^16 periods away (Layers/origin =
+# 1e17, l = 1) is the same medium, and the profile is the one stored for
+# origin 0 (profile_aware.output). x - origin had lost every digit of x: the
+# run was silently homogeneous.
+granular_dg_test(layered_strip/far_origin PRM ../prm/layered_1d.prm
+  ARGS --set "Discretization/numerical flux=impedance" --set Limiter/scheme=flux_variables
+       --set Limiter/indicator=everywhere --set "Output/profile points per cell=1"
+       --set "Output/write vtu=false" --set "Layers/origin=1e17"
+  COMPARE profile-0003.csv EXPECTED layered_strip/profile_aware.output NUMDIFF -a 1e-7 -r 0)
 
 # Where the naive flux fails (the central-upwind paper on layered elasticity,
 # section 2.1.1): the largest stress jump

@@ -61,3 +61,7 @@ granular_dg_unit_test(unit/output_files NUMDIFF -a 0 -r 0)
 # exit 128 + signal at once and one line saying when (none on a rank that
 # does not report), each in a child process; fails itself otherwise.
 granular_dg_unit_test(unit/interrupt_outside_loop NUMDIFF -a 0 -r 0)
+# The modal-energy indicator's measure at solution scales 1e-300 ... 1e300:
+# the same share as at scale 1 (its squares had overflowed beyond ~1e154 and
+# underflowed below ~1e-154: no cell flagged); fails itself otherwise.
+granular_dg_unit_test(unit/modal_energy_scale NUMDIFF -r 1e-12)

@@ -58,20 +58,33 @@ namespace granular_dg::dg
   /// is the larger of its two), or -1 where the energy is not above floor^2
   /// (round-off ahead of a front is not a shock). Used by the limiter's
   /// modal_energy indicator and by subcell blending in 2D.
+  /// (Modes beyond 1e140 or below 1e-140 in magnitude, whose squares would
+  /// overflow or lose digits to underflow, are scaled by their largest
+  /// magnitude first: the share does not depend on the scale.)
   template <int dim, unsigned int n1>
   double
   highest_mode_energy_share(const double *q, const double floor)
   {
     constexpr unsigned int n_modes = dim == 1 ? n1 : n1 * n1;
-    std::array<double, n1> level{};
+    const auto share = [&](const double scale) {
+      std::array<double, n1> level{};
+      for (unsigned int m = 0; m < n_modes; ++m)
+        level[std::max(m % n1, m / n1)] += (q[m] * scale) * (q[m] * scale);
+      double total = 0;
+      for (const double e : level)
+        total += e;
+      const double f = floor * scale;
+      return total > f * f ? level[n1 - 1] / total : -1.;
+    };
+    double largest = 0;
+    bool   finite  = true;
     for (unsigned int m = 0; m < n_modes; ++m)
-      level[std::max(m % n1, m / n1)] += q[m] * q[m];
-    double total = 0;
-    for (const double e : level)
-      total += e;
-    if (!(total > floor * floor))
-      return -1.;
-    return level[n1 - 1] / total;
+      {
+        finite  = finite && std::isfinite(q[m]);
+        largest = std::max(largest, std::abs(q[m]));
+      }
+    const bool moderate = largest > 1e-140 && largest < 1e140;
+    return share(moderate || !finite || largest == 0 ? 1. : 1. / largest);
   }
 
   /// What the limiter limits: nothing, the conserved variables, the

@@ -230,6 +230,9 @@ namespace granular_dg::dg
             "MPI ranks", ranks,
             "1 (the mesh of the " + scene.scene + " scene in " + std::to_string(dim) +
               "D is not spread over ranks: run it without mpirun)");
+    require(dim == 1 || method.engine != Engine::line, "Discretization/engine", "line",
+            "auto or matrix_free in " + std::to_string(dim) +
+              "D (the line engine is one-dimensional)");
     if (method.skip_at_rest)
       {
         if (const std::string why = why_cells_at_rest_cannot_be_skipped(method, scene);

@@ -83,13 +83,20 @@ namespace granular_dg::dg
     raw_factor(const double *q, const double floor2) const
     {
       // (the share E of the limiter's modal_energy indicator, summed in its
-      // own order: one shared sum would change the blended runs' rounding)
+      // own order: one shared sum would change the blended runs' rounding;
+      // modes beyond 1e140 or below 1e-140 scaled first, as there)
+      double largest = 0;
+      for (unsigned int k = 0; k < n; ++k)
+        largest = std::max(largest, std::abs(q[k]));
+      const double s = largest > 1e-140 && largest < 1e140 ? 1. :
+                       largest > 0 && std::isfinite(largest) ? 1. / largest :
+                                                                1.;
       double total = 0;
       for (unsigned int k = 0; k < n; ++k)
-        total += q[k] * q[k];
-      if (n < 2 || !(total > floor2))
+        total += (q[k] * s) * (q[k] * s);
+      if (n < 2 || !(total > floor2 * s * s))
         return 0.;
-      return factor(q[n - 1] * q[n - 1] / total);
+      return factor((q[n - 1] * s) * (q[n - 1] * s) / total);
     }
 
     /// The blending factor before smoothing of a cell whose indicator

@@ -163,11 +163,12 @@ namespace granular_dg::layered_strip
     side_data.resize(2 * dim);
     for (int d = 0; d < dim; ++d)
       {
-        const Side s0 = sides[2 * d], s1 = sides[2 * d + 1];
-        require((s0 == Side::periodic) == (s1 == Side::periodic),
-                std::string("Boundary conditions/") + side_label[2 * d], side_names.name(s0),
-                std::string("periodic only together with ") + side_label[2 * d + 1] +
-                  " = periodic (it is " + side_names.name(s1) + ")");
+        // (the periodic side named, its partner's side said)
+        const int p = sides[2 * d] == Side::periodic ? 2 * d : 2 * d + 1, q = 4 * d + 1 - p;
+        require((sides[p] == Side::periodic) == (sides[q] == Side::periodic),
+                std::string("Boundary conditions/") + side_label[p], side_names.name(sides[p]),
+                std::string("periodic only together with ") + side_label[q] +
+                  " = periodic (it is " + side_names.name(sides[q]) + ")");
       }
   }
 

@@ -189,7 +189,7 @@ namespace granular_dg::layered_strip
       const unsigned int d     = layers.direction;
       const double       h     = (p.hi[d] - p.lo[d]) / cells[d];
       const double       per   = layers.width / h;
-      const double       shift = (layers.origin - p.lo[d]) / h;
+      const double       shift = (layers.nearest_origin() - p.lo[d]) / h;
       require(std::abs(per - std::round(per)) < 1e-9 && std::round(per) >= 1 &&
                 std::abs(shift - std::round(shift)) < 1e-9,
               d == 0 ? "Mesh/cells x" : "Mesh/cells y", cells[d],
@@ -391,11 +391,14 @@ namespace granular_dg::layered_strip
     run(const LayeredParameters &p, const RunParameters &common,
         const dg::DiscretizationParameters &method)
     {
+      // (named: the larger of cells x and cells y, with the other beside it)
+      const unsigned int big = dim == 2 && p.cells[1] > p.cells[0] ? 1 : 0;
       if (!common.convergence)
         dg::require_memory_fits(common, double(p.cells[0]) * (dim == 2 ? p.cells[1] : 1), method.degree,
-                                dim, System<dim>::n_components, "Mesh/cells x",
-                                std::to_string(p.cells[0]) +
-                                  (dim == 2 ? " (cells y = " + std::to_string(p.cells[1]) + ")" :
+                                dim, System<dim>::n_components, big ? "Mesh/cells y" : "Mesh/cells x",
+                                std::to_string(p.cells[big]) +
+                                  (dim == 2 ? std::string(big ? " (cells x = " : " (cells y = ") +
+                                                std::to_string(p.cells[1 - big]) + ")" :
                                               std::string()),
                                 "use fewer cells or a lower degree, or run on more machines "
                                 "(MPI ranks)");

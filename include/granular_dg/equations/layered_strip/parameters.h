@@ -42,8 +42,17 @@ namespace granular_dg::layered_strip
     {
       if (width <= 0)
         return 0;
-      const double s = (p[direction] - origin) / width;
-      return static_cast<long>(std::floor(s)) % 2 == 0 ? 0 : 1;
+      const double s = (p[direction] - nearest_origin()) / width;
+      return std::fmod(std::floor(s), 2.) == 0 ? 0 : 1;
+    }
+
+    /// origin shifted by whole periods 2 l to within one period of 0 (fmod
+    /// is exact): the same layers, and x - origin keeps its digits however
+    /// far away the origin was given
+    double
+    nearest_origin() const
+    {
+      return std::fmod(origin, 2 * width);
     }
 
     std::vector<Material>
