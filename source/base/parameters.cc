@@ -326,7 +326,11 @@ namespace granular_dg
         std::string entry;
         for (const auto &section : path)
           entry += section + "/";
-        set_parameter_origin(entry + name, "--set");
+        // (the options --resume and --benchmark set these two)
+        const std::string origin = entry + name == "Checkpoint/resume" ? "--resume" :
+                                   entry + name == "Benchmark/enabled" ? "--benchmark" :
+                                                                         "--set";
+        set_parameter_origin(entry + name, origin);
       }
   }
 
