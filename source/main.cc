@@ -247,7 +247,10 @@ main(int argc, char **argv)
   catch (const RunError &e)
     {
       if (root)
-        std::cerr << "granular_dg: run failed: " << e.what() << std::endl;
+        {
+          std::cerr << "granular_dg: run failed: " << e.what() << std::endl;
+          abandon_new_output(); // (a benchmark that wrote nothing)
+        }
       return 3;
     }
   catch (const Interrupted &e)

@@ -82,8 +82,17 @@ namespace granular_dg
               }
             catch (const RunError &e)
               {
-                throw RunError("convergence study, degree " + format_number(p) +
-                               ", Convergence/cells = " + std::to_string(cells) + ": " + e.what());
+                // summary.json with the status and the errors so far
+                const std::string what = "convergence study, degree " + format_number(p) +
+                                         ", Convergence/cells = " + std::to_string(cells) +
+                                         ": " + e.what();
+                if (root)
+                  {
+                    summary.add("status", "failed: " + what);
+                    summary.add_object("errors", errors);
+                    summary.write(params.directory + "/summary.json");
+                  }
+                throw RunError(what);
               }
             std::vector<double> row{p};
             for (unsigned int v = 0; v < r.values.size(); ++v)
@@ -125,6 +134,7 @@ namespace granular_dg
       }
     if (root)
       {
+        summary.add("status", "completed");
         summary.add_object("errors", errors);
         summary.write(params.directory + "/summary.json");
       }

@@ -8,6 +8,7 @@
 #include <fcntl.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -338,7 +339,8 @@ namespace granular_dg
     Manifest      &m    = manifests()[root];
     m.file.close();
     m.names.clear();
-    m.fresh = !continue_existing;
+    // (a manifest to continue that is not there yet starts a fresh one)
+    m.fresh = !continue_existing || !fs::exists(root / manifest_name);
     if (continue_existing)
       for (const auto &name : read_manifest(root))
         m.names.insert(name);
@@ -435,9 +437,21 @@ namespace granular_dg
   void
   prepare_benchmark_directory(const std::string &directory)
   {
+    // benchmark.json is overwritten only if a benchmark wrote it
+    if (fs::exists(fs::path(directory) / "benchmark.json"))
+      {
+        const auto listed = read_manifest(directory);
+        require(std::find(listed.begin(), listed.end(), "benchmark.json") != listed.end(),
+                "Output/directory", directory,
+                "a directory without a benchmark.json that granular_dg did not write (its "
+                "manifest " +
+                  std::string(manifest_name) +
+                  " does not list it): move the file away or choose another directory");
+      }
     create_directory(directory);
     lock_output_directory(directory);
     require_writable(directory);
+    begin_manifest(directory, true);
   }
 
   void

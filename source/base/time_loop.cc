@@ -533,8 +533,13 @@ namespace granular_dg
       }
     catch (const Inadmissible &f)
       {
-        throw RunError("benchmark: inadmissible state at " + info.time_name + " = " +
-                       format_number(f.time) + ": " + f.reason);
+        timer.reset(); // (its destructor would warn of the exception)
+        throw RunError("benchmark: " + describe(f, info.time_name, step));
+      }
+    catch (const RunError &)
+      {
+        timer.reset();
+        throw;
       }
     problem.set_phases(nullptr);
     JsonObject c;

@@ -55,3 +55,8 @@ granular_dg_test(bad_input/engine_line_2d PRM bad_input/../hardening/linear_wave
 # MemAvailable varies between runs: -r 1 on the numbers.
 granular_dg_test(bad_input/memory_cells_y PRM bad_input/../hardening/linear_wave_2d.prm
   ARGS --set "Mesh/cells y=400000000" EXIT 2 KEEP_OUTPUT NUMDIFF -a 0 -r 1)
+# --benchmark into a directory with a benchmark.json that no benchmark of the
+# program wrote (its manifest does not list it): refused, the file kept (it
+# had been overwritten).
+granular_dg_test(bad_input/benchmark_user_file PRM ${base} COPY bad_input/benchmark.json
+  ARGS --benchmark --set Output/directory=. EXIT 2 KEEP_OUTPUT NUMDIFF -a 0 -r 0)

@@ -251,6 +251,27 @@ granular_dg_test(network/graph_file_and_edge_section PRM network/ring.prm ${ring
 # no edge: refused instead of ignored.
 granular_dg_test(network/edge_section_without_ends PRM ../prm/network_two_stars.prm
   ARGS --set "Network/Edge 7/length=3" EXIT 2 KEEP_OUTPUT)
+# Edge N sections number their vertices from 1 without gaps: a star numbered
+# 3 is refused naming the gap (it had blamed Vertex 1 for having no edges).
+granular_dg_test(network/vertex_numbers_gap PRM network/chain.prm
+  ARGS --set "Network/Edge 1/to=3" --set "Network/Edge 2/from=3" EXIT 2 KEEP_OUTPUT)
+# Far-end data on an edge between two vertices could never act: refused (it
+# had been ignored).
+granular_dg_test(network/far_end_without_free_end PRM network/chain.prm
+  ARGS --set "Network/Edge 2/far end data=5" EXIT 2 KEEP_OUTPUT)
+# A convergence study whose runs fail (Example 7.3 at CFL 1.2, the stability
+# check off, a vertex wide enough not to bound the step) ends with exit 3 and
+# summary.json's status naming the run; a benchmark of the same case fails
+# with the one line of a run (time, step, position, state, test).
+granular_dg_test(network/study_failure_summary PRM ../prm/network_example_7_3.prm
+  ARGS --set Convergence/enabled=true --set "Convergence/cells=8, 16"
+       --set "Time stepping/CFL number=1.2" --set "Time stepping/check stability limit=false"
+       --set "Network/vertex width factor=3"
+  EXIT 3 COMPARE summary.json:status NUMDIFF -a 0 -r 0)
+granular_dg_test(network/benchmark_failure PRM ../prm/network_example_7_3.prm
+  ARGS --benchmark --set "Time stepping/CFL number=1.2"
+       --set "Time stepping/check stability limit=false" --set "Network/vertex width factor=3"
+  EXIT 3 NUMDIFF -a 0 -r 0)
 granular_dg_test(network/edge_self_loop PRM ../prm/network_two_stars.prm
   ARGS --set "Network/Edge 3/to=1" EXIT 2 KEEP_OUTPUT)
 granular_dg_test(network/edge_direction_and_from PRM ../prm/network_two_stars.prm

@@ -40,8 +40,9 @@ namespace granular_dg
   /**
    * Runs the study: run(i, cells) for degree i of Convergence/degrees on
    * every mesh. Rank 0 writes convergence.csv, convergence-rates.csv and
-   * summary.json (`summary` and the errors) into the output directory and
-   * prints the table.
+   * summary.json (`summary`, the status and the errors) into the output
+   * directory and prints the table. A run that fails ends the study with
+   * summary.json's status naming it (and the errors so far).
    */
   void
   run_convergence_study(const StudyColumns &columns, const RunParameters &params,

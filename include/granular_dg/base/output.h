@@ -145,11 +145,12 @@ namespace granular_dg
   void
   begin_manifest(const std::string &directory, bool continue_existing);
 
-  /// Bad input found after the output directory was prepared (exit 2:
-  /// nothing written): remove what preparing it wrote (parameters.prm, the
-  /// manifest and the lock file) and the directory if this process created
-  /// it and it is empty. Directories of a run that wrote more, or that a
-  /// resume continues, are left alone. Rank 0 (the one that prepares).
+  /// A run that ends with an error before it wrote anything (bad input,
+  /// exit 2, found after the output directory was prepared, or a benchmark
+  /// that failed): remove what preparing it wrote (parameters.prm, the
+  /// manifest and the lock file) and the directories this process created,
+  /// as far as they are empty. Directories of a run that wrote more, or
+  /// that a resume continues, are left alone. Rank 0 (the one that prepares).
   void
   abandon_new_output();
 

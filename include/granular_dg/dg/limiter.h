@@ -58,9 +58,9 @@ namespace granular_dg::dg
   /// is the larger of its two), or -1 where the energy is not above floor^2
   /// (round-off ahead of a front is not a shock). Used by the limiter's
   /// modal_energy indicator and by subcell blending in 2D.
-  /// (Modes beyond 1e140 or below 1e-140 in magnitude, whose squares would
-  /// overflow or lose digits to underflow, are scaled by their largest
-  /// magnitude first: the share does not depend on the scale.)
+  /// (Where the sum of squares leaves [1e-280, 1e280], where it may have
+  /// overflowed or lost digits to underflow, the modes are scaled by their
+  /// largest magnitude first: the share does not depend on the scale.)
   template <int dim, unsigned int n1>
   double
   highest_mode_energy_share(const double *q, const double floor)
@@ -74,8 +74,12 @@ namespace granular_dg::dg
       for (const double e : level)
         total += e;
       const double f = floor * scale;
-      return total > f * f ? level[n1 - 1] / total : -1.;
+      return std::pair(total > f * f ? level[n1 - 1] / total : -1., total);
     };
+    const auto [result, total] = share(1.);
+    if (total > 1e-280 && total < 1e280)
+      return result;
+    // (squares that may have overflowed or underflowed: the modes scaled)
     double largest = 0;
     bool   finite  = true;
     for (unsigned int m = 0; m < n_modes; ++m)
@@ -83,8 +87,7 @@ namespace granular_dg::dg
         finite  = finite && std::isfinite(q[m]);
         largest = std::max(largest, std::abs(q[m]));
       }
-    const bool moderate = largest > 1e-140 && largest < 1e140;
-    return share(moderate || !finite || largest == 0 ? 1. : 1. / largest);
+    return finite && largest > 0 ? share(1. / largest).first : result;
   }
 
   /// What the limiter limits: nothing, the conserved variables, the

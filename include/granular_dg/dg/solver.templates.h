@@ -916,7 +916,6 @@ namespace granular_dg::dg
     summary.add("scene", make_scene(run.convergence_cells.front()).scene);
     summary.add("mode", "convergence study");
     summary.add("dim", static_cast<long long>(dim));
-    summary.add("status", "completed");
     summary.add("cells",
                 std::vector<double>(run.convergence_cells.begin(), run.convergence_cells.end()));
     granular_dg::run_convergence_study(columns, run, one_run, summary);

@@ -84,19 +84,27 @@ namespace granular_dg::dg
     {
       // (the share E of the limiter's modal_energy indicator, summed in its
       // own order: one shared sum would change the blended runs' rounding;
-      // modes beyond 1e140 or below 1e-140 scaled first, as there)
+      // the modes scaled where the squares may overflow or underflow, as there)
+      const auto raw = [&](const double s) {
+        double total = 0;
+        for (unsigned int k = 0; k < n; ++k)
+          total += (q[k] * s) * (q[k] * s);
+        return std::pair(n < 2 || !(total > floor2 * s * s) ?
+                           0. :
+                           factor((q[n - 1] * s) * (q[n - 1] * s) / total),
+                         total);
+      };
+      const auto [alpha, total] = raw(1.);
+      if (total > 1e-280 && total < 1e280)
+        return alpha;
       double largest = 0;
+      bool   finite  = true;
       for (unsigned int k = 0; k < n; ++k)
-        largest = std::max(largest, std::abs(q[k]));
-      const double s = largest > 1e-140 && largest < 1e140 ? 1. :
-                       largest > 0 && std::isfinite(largest) ? 1. / largest :
-                                                                1.;
-      double total = 0;
-      for (unsigned int k = 0; k < n; ++k)
-        total += (q[k] * s) * (q[k] * s);
-      if (n < 2 || !(total > floor2 * s * s))
-        return 0.;
-      return factor((q[n - 1] * s) * (q[n - 1] * s) / total);
+        {
+          finite  = finite && std::isfinite(q[k]);
+          largest = std::max(largest, std::abs(q[k]));
+        }
+      return finite && largest > 0 ? raw(1. / largest).first : alpha;
     }
 
     /// The blending factor before smoothing of a cell whose indicator

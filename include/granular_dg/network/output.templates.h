@@ -287,7 +287,6 @@ namespace granular_dg::network
     summary.add("scene", "network");
     summary.add("mode", "convergence study");
     summary.add("dim", 1ll);
-    summary.add("status", "completed");
     summary.add("exact_solution", exact.name());
     summary.add("cells_per_unit_length",
                 std::vector<double>(params.convergence_cells.begin(),

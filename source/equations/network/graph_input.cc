@@ -434,6 +434,22 @@ namespace granular_dg::network
   }
 
   void
+  GraphInput::require_far_end_used(const Edge &e, const std::string &far_end_name,
+                                   const std::string &far_end, const bool far_end_given,
+                                   const std::string &data_name, const std::string &data,
+                                   const bool data_given) const
+  {
+    // settings that could never act are refused, not ignored
+    const bool free = e.from == free_end || e.to == free_end;
+    require(free || !far_end_given, far_end_name, far_end,
+            "unset: " + e.label + " has no free end (both ends are at vertices)");
+    require(!data_given || (free && e.far_end == FarEnd::dirichlet), data_name, data,
+            "unset unless the edge has a free end with dirichlet data (" + e.label +
+              (free ? " has an outflow end, which takes the inner trace)" :
+                      " has no free end)"));
+  }
+
+  void
   GraphInput::add_edge(Edge e, const FluxFunction &f, const std::string &at,
                        const std::string &initial,
                        const std::string &far_end_data, const std::string &initial_name,
@@ -523,6 +539,10 @@ namespace granular_dg::network
         e.far_end = far.empty() ? FarEnd::outflow : far_end_names.parse(at + "far_end", far);
         const std::string initial = table.get(row, "initial");
         const std::string g       = table.get(row, "far_end_data");
+        require_far_end_used(e, at + "far_end", far, !far.empty(), at + "far_end_data", g,
+                             !g.empty());
+        require(!g.empty() || e.far_end != FarEnd::dirichlet, at + "far_end_data", g,
+                "the inflow state of the dirichlet end (a number or an expression in t)");
         add_edge(e, f, at, initial.empty() ? "0" : initial, g.empty() ? "0" : g, "initial",
                  "far_end_data");
       }
@@ -633,10 +653,25 @@ namespace granular_dg::network
         const FluxFunction f = make_flux(given.flux, linear ? given.advection_speed : given.alpha,
                                          at, linear ? "advection speed" : "alpha");
         e.far_end = far_end_names.parse(at + "far end", given.far_end);
+        require_far_end_used(e, at + "far end", given.far_end,
+                             !parameter_origin(at + "far end").empty(), at + "far end data",
+                             given.far_end_data, !parameter_origin(at + "far end data").empty());
         add_edge(e, f, at, given.initial_data, given.far_end_data, "initial data", "far end data");
       }
     require(!graph.edges.empty(), "Network/Edge 1/direction", "none",
             "in, out or loop (or from/to) for at least one Network/Edge N");
+    // prm vertex numbers run from 1 without gaps (a graph file's ids need not)
+    std::vector<bool> named(n_vertices, false);
+    for (const Edge &e : graph.edges)
+      for (const unsigned int v : {e.from, e.to})
+        if (v != free_end)
+          named[v] = true;
+    for (unsigned int v = 0; v < n_vertices; ++v)
+      if (!named[v])
+        throw InputError("Network: no Edge N section names " + section("Vertex", v) +
+                         ", but one names " + section("Vertex", n_vertices - 1) +
+                         ": the vertices of Edge N sections are numbered from 1 without gaps "
+                         "(a Network/graph file's vertex ids may have gaps)");
     vertices_from_sections(n_vertices);
   }
 

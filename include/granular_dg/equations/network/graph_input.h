@@ -83,10 +83,17 @@ namespace granular_dg::network
     build();
     void
     build_from_sections();
-    /// the vertices the edges name (the first n_vertices) and those whose
-    /// Vertex N section sets something
+    /// the vertices the edges name (the first n_vertices); a Vertex N
+    /// section beyond them is refused
     void
     vertices_from_sections(unsigned int n_vertices);
+    /// Far-end settings that could never act are refused: a far end given
+    /// on an edge without a free end, data given without a free dirichlet
+    /// end (far_end_given, data_given: written by the user).
+    void
+    require_far_end_used(const Edge &e, const std::string &far_end_name, const std::string &far_end,
+                         bool far_end_given, const std::string &data_name, const std::string &data,
+                         bool data_given) const;
     /// e with its flux law f and its data (numbers become constants, else
     /// expressions; the names are the data's parameters in messages)
     void
