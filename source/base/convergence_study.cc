@@ -66,6 +66,13 @@ namespace granular_dg
                    columns.rates_comment);
       }
     JsonObject errors;
+    const auto write_summary = [&](const std::string &status) {
+      if (!root)
+        return;
+      summary.add("status", status);
+      summary.add_object("errors", errors);
+      summary.write(params.directory + "/summary.json");
+    };
     for (unsigned int i = 0; i < params.convergence_degrees.size(); ++i)
       {
         const double p = params.convergence_degrees[i];
@@ -86,12 +93,7 @@ namespace granular_dg
                 const std::string what = "convergence study, degree " + format_number(p) +
                                          ", Convergence/cells = " + std::to_string(cells) +
                                          ": " + e.what();
-                if (root)
-                  {
-                    summary.add("status", "failed: " + what);
-                    summary.add_object("errors", errors);
-                    summary.write(params.directory + "/summary.json");
-                  }
+                write_summary("failed: " + what);
                 throw RunError(what);
               }
             std::vector<double> row{p};
@@ -132,11 +134,6 @@ namespace granular_dg
         if (root)
           rates.row(finest);
       }
-    if (root)
-      {
-        summary.add("status", "completed");
-        summary.add_object("errors", errors);
-        summary.write(params.directory + "/summary.json");
-      }
+    write_summary("completed");
   }
 } // namespace granular_dg

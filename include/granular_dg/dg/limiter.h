@@ -52,15 +52,33 @@ namespace granular_dg::dg
   /// floor of the modal-energy indicator and of subcell blending.
   inline constexpr double indicator_floor_fraction = 1e-10;
 
+  /// The factor by which modes q[0..n) whose sum of squares is total are
+  /// scaled before squaring: 1 / their largest magnitude where total left
+  /// [1e-280, 1e280] (it may have overflowed or lost digits to underflow)
+  /// and the modes are finite and not all 0, else 1. A share of squares
+  /// computed at that scale does not depend on the scale of q.
+  inline double
+  square_safe_scale(const double *q, const unsigned int n, const double total)
+  {
+    if (total > 1e-280 && total < 1e280)
+      return 1.;
+    double largest = 0;
+    bool   finite  = true;
+    for (unsigned int k = 0; k < n; ++k)
+      {
+        finite  = finite && std::isfinite(q[k]);
+        largest = std::max(largest, std::abs(q[k]));
+      }
+    return finite && largest > 0 ? 1. / largest : 1.;
+  }
+
   /// The modal-energy indicator's measure of one field of a cell (its modes
   /// q, n1 per direction, m = k_0 + n1 k_1): the share e_p / sum_k e_k of the
   /// highest degree p = n1 - 1 in the energy by degree (in 2D a mode's degree
   /// is the larger of its two), or -1 where the energy is not above floor^2
   /// (round-off ahead of a front is not a shock). Used by the limiter's
   /// modal_energy indicator and by subcell blending in 2D.
-  /// (Where the sum of squares leaves [1e-280, 1e280], where it may have
-  /// overflowed or lost digits to underflow, the modes are scaled by their
-  /// largest magnitude first: the share does not depend on the scale.)
+  /// (At square_safe_scale(): the share does not depend on the scale.)
   template <int dim, unsigned int n1>
   double
   highest_mode_energy_share(const double *q, const double floor)
@@ -77,17 +95,8 @@ namespace granular_dg::dg
       return std::pair(total > f * f ? level[n1 - 1] / total : -1., total);
     };
     const auto [result, total] = share(1.);
-    if (total > 1e-280 && total < 1e280)
-      return result;
-    // (squares that may have overflowed or underflowed: the modes scaled)
-    double largest = 0;
-    bool   finite  = true;
-    for (unsigned int m = 0; m < n_modes; ++m)
-      {
-        finite  = finite && std::isfinite(q[m]);
-        largest = std::max(largest, std::abs(q[m]));
-      }
-    return finite && largest > 0 ? share(1. / largest).first : result;
+    const double scale         = square_safe_scale(q, n_modes, total);
+    return scale == 1. ? result : share(scale).first;
   }
 
   /// What the limiter limits: nothing, the conserved variables, the

@@ -84,7 +84,7 @@ namespace granular_dg::dg
     {
       // (the share E of the limiter's modal_energy indicator, summed in its
       // own order: one shared sum would change the blended runs' rounding;
-      // the modes scaled where the squares may overflow or underflow, as there)
+      // the modes scaled at square_safe_scale(), as there)
       const auto raw = [&](const double s) {
         double total = 0;
         for (unsigned int k = 0; k < n; ++k)
@@ -95,16 +95,8 @@ namespace granular_dg::dg
                          total);
       };
       const auto [alpha, total] = raw(1.);
-      if (total > 1e-280 && total < 1e280)
-        return alpha;
-      double largest = 0;
-      bool   finite  = true;
-      for (unsigned int k = 0; k < n; ++k)
-        {
-          finite  = finite && std::isfinite(q[k]);
-          largest = std::max(largest, std::abs(q[k]));
-        }
-      return finite && largest > 0 ? raw(1. / largest).first : alpha;
+      const double scale        = square_safe_scale(q, n, total);
+      return scale == 1. ? alpha : raw(scale).first;
     }
 
     /// The blending factor before smoothing of a cell whose indicator

@@ -405,12 +405,9 @@ namespace granular_dg::network
     mutable std::vector<double>                      end_traces;
     /// whether a vertex of this rank has no volume (balanced every stage)
     bool                                             without_volume = false;
-    /// This rank's vertices whose cell the edges' CFL step does not cover:
-    /// with a flux bound a_k <= max|f'|/h over edge k (the CFL scan's),
-    /// dt sum_k a_k <= cfl sum_k h_k = 2 cfl dx_0 / width factor, so a
-    /// vertex needs a bound of its own when its width factor < 2 cfl (the
-    /// paper's factor 1 at CFL 1/2 does not); whether any rank has such a
-    /// vertex, and one that is cut (collective decisions in time_step()).
+    /// This rank's vertices whose cell the edges' CFL step does not cover
+    /// (Vertex::narrower_than_step()); whether any rank has such a vertex,
+    /// and one that is cut (collective decisions in time_step()).
     std::vector<unsigned int>                        narrow_vertices;
     bool                                             narrow_anywhere = false, narrow_cut = false;
     /// the end faces of this rank's edges (2 local edge + side) at each

@@ -125,7 +125,7 @@ namespace granular_dg::network
     for (const unsigned int v : ranks->vertices())
       {
         without_volume = without_volume || junctions[v].width() == 0;
-        if (junctions[v].width() > 0 && net.vertices[v].width_factor < 2 * method.cfl)
+        if (net.vertices[v].narrower_than_step(method.cfl))
           {
             narrow_vertices.push_back(v);
             for (auto i = vertex_ends.first[v]; i < vertex_ends.first[v + 1]; ++i)

@@ -327,10 +327,9 @@ namespace granular_dg::network
       unsigned int narrowest = 0, count = 0;
       for (unsigned int v = 0; v < vertices.size(); ++v)
         {
-          const double factor = vertices[v].width_factor;
-          if (factor > 0 && factor < 2 * cfl)
+          if (vertices[v].narrower_than_step(cfl))
             {
-              if (count == 0 || factor < vertices[narrowest].width_factor)
+              if (count == 0 || vertices[v].width_factor < vertices[narrowest].width_factor)
                 narrowest = v;
               ++count;
             }
@@ -445,17 +444,17 @@ namespace granular_dg::network
       if (common.convergence)
         require(static_cast<bool>(c.exact), "Network/exact solution", "none",
                 "an exact solution: a convergence study measures errors");
+      const std::size_t n_edges = c.input.graph.edges.size();
+      require(Utilities::MPI::n_mpi_processes(MPI_COMM_WORLD) <= n_edges, "MPI ranks",
+              Utilities::MPI::n_mpi_processes(MPI_COMM_WORLD),
+              "at most the number of edges, " + std::to_string(n_edges) +
+                " (each rank computes whole edges)");
       // a study: its finest level, which costs the most
       warn_of_short_edges(c, common.convergence ?
                                double(*std::max_element(common.convergence_cells.begin(),
                                                         common.convergence_cells.end())) :
                                c.options.cells_per_unit_length);
       warn_of_narrow_vertices(c, common);
-      const std::size_t n_edges = c.input.graph.edges.size();
-      require(Utilities::MPI::n_mpi_processes(MPI_COMM_WORLD) <= n_edges, "MPI ranks",
-              Utilities::MPI::n_mpi_processes(MPI_COMM_WORLD),
-              "at most the number of edges, " + std::to_string(n_edges) +
-                " (each rank computes whole edges)");
       {
         const auto    n     = edge_cells(c.input.graph, c.options.cells_per_unit_length);
         unsigned long cells = 0;
