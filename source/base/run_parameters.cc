@@ -118,7 +118,10 @@ namespace granular_dg
   {
     b.section("Convergence");
     b.add("enabled", convergence, Patterns::Bool(),
-          "Run a convergence study against the exact solution instead of a single run.");
+          "Run a convergence study against the exact solution instead of a single run.")
+      .check([this](const bool on) { return !(on && max_steps > 0); },
+             "false when Time stepping/max steps is set (a study runs every mesh to the final "
+             "time; max steps stops a single run, to be continued with --resume)");
     b.add("degrees", "0,1,2,3,4", Patterns::List(Patterns::Integer(0, 4)),
           "Degrees of the study, each once.",
           [this](const std::string &text) {

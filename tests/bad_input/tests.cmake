@@ -60,3 +60,18 @@ granular_dg_test(bad_input/memory_cells_y PRM bad_input/../hardening/linear_wave
 # had been overwritten).
 granular_dg_test(bad_input/benchmark_user_file PRM ${base} COPY bad_input/benchmark.json
   ARGS --benchmark --set Output/directory=. EXIT 2 KEEP_OUTPUT NUMDIFF -a 0 -r 0)
+# Settings that cannot act are refused (they had been accepted and ignored):
+# Output/write modes in 2D and in the network (modes-NNNN.csv is a 1D file of
+# the DG solver), Time stepping/max steps in a convergence study (every mesh
+# runs to the final time), and an initial value of a network vertex without
+# volume (its value balances its ends' fluxes at every stage).
+granular_dg_test(bad_input/write_modes_2d PRM bad_input/../hardening/linear_wave_2d.prm
+  ARGS --set "Output/write modes=true" EXIT 2 KEEP_OUTPUT NUMDIFF -a 0 -r 0)
+granular_dg_test(bad_input/write_modes_network PRM ../prm/network_example_7_3.prm
+  ARGS --set "Output/write modes=true" EXIT 2 KEEP_OUTPUT NUMDIFF -a 0 -r 0)
+granular_dg_test(bad_input/max_steps_in_study PRM ${base}
+  ARGS --set "Time stepping/max steps=10" --set Convergence/enabled=true
+  EXIT 2 KEEP_OUTPUT NUMDIFF -a 0 -r 0)
+granular_dg_test(bad_input/vertex_without_volume_value PRM ../prm/network_two_stars.prm
+  ARGS --set "Network/Vertex 2/width factor=0" --set "Network/Vertex 2/initial value=0.3"
+  EXIT 2 KEEP_OUTPUT NUMDIFF -a 0 -r 0)

@@ -102,7 +102,8 @@ granular_dg_test(layered_strip/indicator_accuracy EXE ${TEST_PYTHON}
 # strip at rest whose wall starts to move at t = 10 (the cells on a boundary
 # with data are always computed); the coarse 2D strip (100 x 10 P3 to t = 20)
 # of the comparison with Clawpack. The stored fraction of cell updates left out
-# (2 digits, exact) fails the test when the skipping stops paying.
+# (2 digits, exact) fails the test when the skipping stops paying; the strip's
+# depends on the SIMD width (0.64 at 4 lanes, 0.63 at 8): at least 0.6.
 set(rest_agrees ${CMAKE_CURRENT_SOURCE_DIR}/layered_strip/rest_agrees.py)
 granular_dg_test(layered_strip/rest_exact_wall_switch EXE ${TEST_PYTHON}
   ARGS ${rest_agrees} $<TARGET_FILE:granular_dg> ${CMAKE_CURRENT_SOURCE_DIR}/layered_strip/rest_wall_switch.prm
@@ -116,5 +117,5 @@ granular_dg_test(layered_strip/rest_agrees_strip EXE ${TEST_PYTHON}
   ARGS ${rest_agrees} $<TARGET_FILE:granular_dg> ${CMAKE_CURRENT_SOURCE_DIR}/../prm/layered_2d.prm
        --tolerance 1e-10 --skip 1e-14 --set "Mesh/cells x=100" --set "Mesh/cells y=10"
        --set Discretization/degree=3 --set "Time stepping/CFL number=0.1"
-       --set "Time stepping/final time=20" --set "Output/write vtu=false"
+       --set "Time stepping/final time=20" --set "Output/write vtu=false" --min-skipped 0.6
   COMPARE stdout KEEP_OUTPUT NUMDIFF -a 0 -r 0)

@@ -1,9 +1,9 @@
 // The network engine is a template on the physics of an edge: a Law of this
 // test's own, written from the contract in granular_dg/network/network.h
-// (value, derivative, flux, describe, flux_name, name) and nothing else,
-// runs it. Linear advection f = a u (a = 0.75) with the upwind flux a u_l
-// on a star of 2 ingoing and 2 outgoing edges (Dirichlet inflow data, a
-// vertex with volume), degree 2, SSP-RK3, 40 steps: the state must equal,
+// (value, derivative, flux, admissible_range, vertex_range, describe,
+// flux_name, name) and nothing else, runs it. Linear advection f = a u (a = 0.75) with the
+// upwind flux a u_l on a star of 2 ingoing and 2 outgoing edges (Dirichlet
+// inflow data, a vertex with volume), degree 2, SSP-RK3, 40 steps: the state must equal,
 // bit for bit, that of the scene's EdgeLaw (linear flux, Engquist-Osher =
 // upwind for a > 0) on the same network, and so must the time steps.
 
@@ -13,6 +13,7 @@
 #include <granular_dg/network/network.templates.h>
 #include <granular_dg/network/output.templates.h>
 
+#include <array>
 #include <cmath>
 #include <iostream>
 
@@ -47,6 +48,18 @@ namespace
     flux(const Number &u_l, const Number &) const
     {
       return a * u_l;
+    }
+
+    std::array<double, 2>
+    admissible_range() const
+    {
+      return {{-INFINITY, INFINITY}};
+    }
+
+    std::array<double, 2>
+    vertex_range(bool) const
+    {
+      return admissible_range();
     }
 
     std::string

@@ -407,3 +407,21 @@ granular_dg_test(network/stationary_dead_end PRM network/dead_end.prm
 granular_dg_test(network/dead_end_filling PRM network/dead_end.prm
   COPY network/dead_end.csv ARGS --set "Network/vertex initial value=1"
   COMPARE summary.json:status NUMDIFF -a 0 -r 0)
+
+# A junction of traffic roads of unequal capacity (network/unequal_capacity.prm:
+# alpha = 2 and 1 in at capacity, alpha = 1 out) fills up; its single vertex
+# value must stay within [0, 1], the densities of the alpha = 1 roads (beyond,
+# their flux turns negative). The run stops where it passes 1 (exit 3, the
+# status names the vertex, the road and the time); the same at degree 2,
+# where the cell means are checked too.
+granular_dg_test(network/unequal_capacity PRM network/unequal_capacity.prm EXIT 3
+  COMPARE summary.json:status,final_time NUMDIFF -r 1e-9)
+granular_dg_test(network/unequal_capacity_dg PRM network/unequal_capacity.prm EXIT 3
+  ARGS --set Discretization/degree=2 --set "Time stepping/CFL number=0.15"
+       --set Limiter/scheme=componentwise
+  COMPARE summary.json:status,final_time NUMDIFF -r 1e-9)
+# Traffic data outside [0, alpha] are refused at t = 0 (exit 3, initial state
+# written): initial data 1.5 on a road of capacity 1.
+granular_dg_test(network/traffic_initial_jammed PRM network/unequal_capacity.prm EXIT 3
+  ARGS --set "Network/Edge 3/initial data=1.5"
+  COMPARE summary.json:status NUMDIFF -a 0 -r 0)

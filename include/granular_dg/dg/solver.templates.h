@@ -233,6 +233,9 @@ namespace granular_dg::dg
     require(dim == 1 || method.engine != Engine::line, "Discretization/engine", "line",
             "auto or matrix_free in " + std::to_string(dim) +
               "D (the line engine is one-dimensional)");
+    require(dim == 1 || !method.write_modes, "Output/write modes", "true",
+            "false in " + std::to_string(dim) + "D (modes-NNNN.csv, the cells' Legendre "
+              "coefficients, is written in 1D)");
     if (method.skip_at_rest)
       {
         if (const std::string why = why_cells_at_rest_cannot_be_skipped(method, scene);

@@ -135,7 +135,11 @@ namespace granular_dg::network
    * Law is the physics of an edge, one object per edge: copyable, with
    * value(u), derivative(u) = f'(u) and the numerical flux flux(u_l, u_r),
    * each a template in the number type (double and VectorizedArray<double>),
-   * describe() for output headers, flux_name() for summary.json and a static
+   * admissible_range() = {lo, hi}, the states it admits (infinite bounds
+   * where unbounded), vertex_range(incoming), the vertex values for which
+   * the flux at a vertex end of it is physical (both checked after every
+   * stage), describe() for
+   * messages and output headers, flux_name() for summary.json and a static
    * `name` (tests/network/custom_law.cc has a minimal one). The members are
    * defined in network.templates.h and output.templates.h, which the scene
    * instantiates for its Law.
@@ -325,12 +329,16 @@ namespace granular_dg::network
     /// last stage (the fluxes the edges used)
     double far_end_inflow() const;
     void   post_stage(NetworkState &s, double stage_time);
-    /// Inadmissible unless s is finite (and, at degree 0, in the range of
-    /// the step).
-    void   post_stage_checks(const NetworkState &s, double stage_time);
+    /// Inadmissible unless s is finite and admissible (and, at degree 0,
+    /// in the range of the step); initial: s is the initial state.
+    void   post_stage_checks(const NetworkState &s, double stage_time, bool initial = false);
     /// this rank's part of post_stage_checks (principle: check the maximum
     /// principle against bounds)
-    void   local_checks(const NetworkState &s, double stage_time, bool principle);
+    void   local_checks(const NetworkState &s, double stage_time, bool principle, bool initial);
+    /// Inadmissible unless every vertex value, far-end datum and (where
+    /// means) cell mean of s lies in the range its laws admit
+    /// (Law::admissible_range()).
+    void   check_admissible_ranges(const NetworkState &s, double stage_time, bool means) const;
     /// Degree 0: the range [min, max] of the cell averages, the vertex values
     /// and the free ends' Dirichlet data of the step from t to t + dt.
     std::pair<double, double> range_of_step(double t, double dt) const;
@@ -447,6 +455,17 @@ namespace granular_dg::network
     double                     t = 0., inflow = 0., h_min = 0.;
     MassBalance                balance;
     double                     tv0 = 0, u00 = 0, tv_max = 0;
+    /// The admissible range of every vertex (the intersection of the
+    /// vertex_range() of its ends, and the ends that bound it from below and
+    /// above) and of the edges of this rank whose law bounds the state; each
+    /// widened by 1e-12 of its larger finite bound (round-off).
+    struct Bounded
+    {
+      std::array<double, 2>  range;
+      std::array<EdgeEnd, 2> end;
+    };
+    std::vector<Bounded>                             vertex_range;
+    std::vector<std::pair<unsigned int, std::array<double, 2>>> bounded_edges;
     /// the range of the current step (degree 0's maximum principle)
     std::pair<double, double>  bounds{-INFINITY, INFINITY};
     /// far-end inflow rate of each stage in the current step

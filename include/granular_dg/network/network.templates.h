@@ -77,6 +77,32 @@ namespace granular_dg::network
                                net.vertices[v].width_factor * width);
       }
 
+    // the admissible ranges (Law::admissible_range(), vertex_range()),
+    // widened by round-off
+    const auto widened = [](const std::array<double, 2> r) {
+      double scale = 0;
+      for (const double b : r)
+        if (std::isfinite(b))
+          scale = std::max(scale, std::abs(b));
+      return std::array<double, 2>{{r[0] - 1e-12 * scale, r[1] + 1e-12 * scale}};
+    };
+    for (const auto &j : junctions)
+      {
+        Bounded b{{{-INFINITY, INFINITY}}, {}};
+        for (const auto &end : j.ends())
+          {
+            const auto r = widened(laws[end.edge].vertex_range(end.incoming));
+            if (r[0] > b.range[0])
+              b.range[0] = r[0], b.end[0] = end;
+            if (r[1] < b.range[1])
+              b.range[1] = r[1], b.end[1] = end;
+          }
+        vertex_range.push_back(b);
+      }
+    for (const unsigned int k : ranks->edges())
+      if (const auto r = widened(laws[k].admissible_range()); std::isfinite(r[0]) || std::isfinite(r[1]))
+        bounded_edges.emplace_back(k, r);
+
     // the end faces of this rank's edges at vertices and with far-end data
     for (const unsigned int k : ranks->edges())
       for (const unsigned int side : {0u, 1u})
@@ -289,7 +315,7 @@ namespace granular_dg::network
     bounds         = {-INFINITY, INFINITY};
     try
       {
-        post_stage_checks(s, time);
+        post_stage_checks(s, time, true);
       }
     catch (Inadmissible &f)
       {
@@ -550,7 +576,8 @@ namespace granular_dg::network
 
   template <typename Law>
   void
-  NetworkProblem<Law>::post_stage_checks(const NetworkState &s, const double stage_time)
+  NetworkProblem<Law>::post_stage_checks(const NetworkState &s, const double stage_time,
+                                         const bool initial)
   {
     const bool principle =
       method.degree == 0 && std::isfinite(bounds.first) && std::isfinite(bounds.second);
@@ -569,7 +596,7 @@ namespace granular_dg::network
     std::optional<Inadmissible> found;
     try
       {
-        local_checks(s, stage_time, principle);
+        local_checks(s, stage_time, principle, initial);
       }
     catch (const Inadmissible &f)
       {
@@ -583,13 +610,18 @@ namespace granular_dg::network
   template <typename Law>
   void
   NetworkProblem<Law>::local_checks(const NetworkState &s, const double stage_time,
-                                    const bool principle)
+                                    const bool principle, const bool initial)
   {
     for (const unsigned int v : ranks->vertices())
       if (!std::isfinite(s.vertices[v]))
         throw failure(stage_time, -1 - int(v), 0., s.vertices[v], "vertex value is not finite");
     // (non-finite values fail this test too, and are reported as such below)
     const internal::Scan edges = principle ? internal::scan<true>(s.edges) : internal::scan<false>(s.edges);
+    // At degree 0 the update of an edge is monotone under its CFL limit
+    // (the maximum principle checks it): its means stay within its
+    // initial and far-end data and the values of its vertices, which are
+    // checked here. The means of higher degrees are checked every stage.
+    check_admissible_ranges(s, stage_time, edges.finite && (initial || method.degree > 0));
     if (principle && edges.finite)
       check_maximum_principle(s, stage_time, edges.lo, edges.hi);
     if (edges.finite)
@@ -606,6 +638,50 @@ namespace granular_dg::network
           if (!std::isfinite(s.edges[lines->index(local(k), c) + m]))
             throw failure(stage_time, int(k), (c + 0.5) * edge_h[k],
                           s.edges[lines->index(local(k), c)], "state is not finite");
+  }
+
+  template <typename Law>
+  void
+  NetworkProblem<Law>::check_admissible_ranges(const NetworkState &s, const double stage_time,
+                                               const bool means) const
+  {
+    // (NaN is not outside: the finiteness checks report it)
+    const auto outside = [](const double x, const std::array<double, 2> &r) {
+      return x < r[0] || x > r[1];
+    };
+    const auto interval = [](const std::array<double, 2> &r) {
+      return "[" + format_number(r[0]) + ", " + format_number(r[1]) + "]";
+    };
+    const auto admitted = [&](const unsigned int k) {
+      return interval(laws[k].admissible_range()) + ", the states " + net.edges[k].label + " (" +
+             laws[k].describe() + ") admits";
+    };
+    for (const unsigned int v : ranks->vertices())
+      if (const Bounded &b = vertex_range[v]; outside(s.vertices[v], b.range))
+        {
+          const EdgeEnd &end = b.end[s.vertices[v] > b.range[1]];
+          throw failure(stage_time, -1 - int(v), 0., s.vertices[v],
+                        "vertex value outside " +
+                          interval(laws[end.edge].vertex_range(end.incoming)) +
+                          ", where the flux at the " + (end.incoming ? "end" : "start") +
+                          " of " + net.edges[end.edge].label + " (" +
+                          laws[end.edge].describe() + ") is physical");
+        }
+    for (const auto &[k, range] : bounded_edges)
+      for (unsigned int side = 0; side < 2; ++side)
+        if (lines->kind(local(k), side) == EndKind::dirichlet)
+          if (const double g = lines->outer_state(local(k), side); outside(g, range))
+            throw failure(stage_time, int(k), far_end_point({k, side}), g,
+                          "far-end data at t = " + format_number(data_time) + " outside " +
+                            admitted(k));
+    for (unsigned int i = 0; means && i < bounded_edges.size(); ++i)
+      {
+        const auto &[k, range] = bounded_edges[i];
+        for (unsigned int c = 0; c < edge_cells[k]; ++c)
+          if (const double x = s.edges[lines->index(local(k), c)]; outside(x, range))
+            throw failure(stage_time, int(k), (c + 0.5) * edge_h[k], x,
+                          "cell mean outside " + admitted(k));
+      }
   }
 
   template <typename Law>

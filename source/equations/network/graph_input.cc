@@ -375,9 +375,10 @@ namespace granular_dg::network
           "whose value solves the discrete Rankine-Hugoniot condition sum_in F = sum_out F at "
           "every stage.");
     b.add("vertex initial value", vertex_initial_value, Patterns::Anything(),
-          "u_0 of every vertex at t = 0 (unless its Vertex N section says otherwise): "
-          "'stationary' (the discrete stationary value c_0 of the initial edge traces, "
-          "Definition 4.4) or a constant expression, e.g. sqrt(2/3).");
+          "u_0 of every vertex with volume at t = 0 (unless its Vertex N section says "
+          "otherwise): 'stationary' (the discrete stationary value c_0 of the initial edge "
+          "traces, Definition 4.4) or a constant expression, e.g. sqrt(2/3). A vertex without "
+          "volume (width factor 0) takes the balance of its ends' traces instead.");
     for (unsigned int i = 0; i < max_vertex_sections; ++i)
       {
         VertexSection &v = vertex_sections[i];
@@ -387,7 +388,7 @@ namespace granular_dg::network
               "volume); default: Network/vertex width factor.");
         b.add("initial value", v.initial_value, Patterns::Anything(),
               "u_0 at t = 0: stationary, a constant expression, or default (Network/vertex "
-              "initial value).");
+              "initial value); stationary or default for a vertex without volume.");
         b.add("position", v.position, Patterns::Anything(),
               "'x, y' where the vertex is drawn (give all vertices one, or none).");
       }
@@ -421,13 +422,20 @@ namespace granular_dg::network
                            "Network/graph file '" + graph_file + "'");
       }
     // the Network-wide defaults of the vertices
-    value_given.resize(graph.vertices.size(), false);
+    value_given.resize(graph.vertices.size());
     for (unsigned int v = 0; v < graph.vertices.size(); ++v)
       {
-        if (std::isnan(graph.vertices[v].width_factor))
-          graph.vertices[v].width_factor = vertex_width_factor;
-        if (!value_given[v])
-          graph.vertices[v].initial_value = value;
+        Vertex &vertex = graph.vertices[v];
+        if (std::isnan(vertex.width_factor))
+          vertex.width_factor = vertex_width_factor;
+        if (value_given[v].empty())
+          vertex.initial_value = value;
+        // (the Network-wide value is for the vertices with volume)
+        if (vertex.width_factor == 0 && vertex.initial_value && !value_given[v].empty())
+          require(false, value_given[v], format_number(*vertex.initial_value),
+                  "stationary or default for " + vertex.label +
+                    ", a vertex without volume (width factor 0): its value balances the "
+                    "fluxes of its ends at every stage and has no initial value of its own");
       }
     graph.validate(graph_file.empty() ? std::string("Network") :
                                         "Network/graph file '" + graph_file + "'");
@@ -559,7 +567,7 @@ namespace granular_dg::network
     for (unsigned int i = 0; i < vertex_ids.size(); ++i)
       index[vertex_ids[i]] = i;
     std::map<long, unsigned int> seen;
-    value_given.assign(graph.vertices.size(), false);
+    value_given.assign(graph.vertices.size(), "");
     for (const auto &[line, row] : table.rows)
       {
         const std::string at = parameter + " '" + file + "', line " + std::to_string(line) + ": ";
@@ -587,7 +595,7 @@ namespace granular_dg::network
         if (!u0.empty())
           {
             v.initial_value         = vertex_value(u0, at + "initial_value");
-            value_given[it->second] = true;
+            value_given[it->second] = at + "initial_value";
           }
       }
     // every vertex an edge names must be listed
@@ -698,7 +706,7 @@ namespace granular_dg::network
                     "default or a number >= 0");
             v.width_factor = *x;
           }
-        value_given.push_back(given.initial_value != "default");
+        value_given.push_back(given.initial_value != "default" ? at + "initial value" : "");
         if (given.initial_value != "default")
           v.initial_value = vertex_value(given.initial_value, at + "initial value");
         if (!given.position.empty())

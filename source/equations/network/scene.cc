@@ -409,6 +409,9 @@ namespace granular_dg::network
               "quiet cells is built in the DG solver of the 1D scenes, not for the network)");
       require(m.engine != dg::Engine::matrix_free, "Discretization/engine", "matrix_free",
               "auto or line here: the network's edges run in one line engine (EdgeLines)");
+      require(!m.write_modes, "Output/write modes", "true",
+              "false here: modes-NNNN.csv is written by the 1D scenes of the DG solver (the "
+              "network writes its edges' samples, profile-NNNN-edge-K.csv)");
       method            = m;
       flux              = numerical_flux_names.parse("Discretization/numerical flux", m.flux);
       options.write_vtu = common.write_vtu;

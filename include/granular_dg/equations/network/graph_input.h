@@ -103,8 +103,9 @@ namespace granular_dg::network
     /// the far-end data by their text: edges with the same data share one
     /// function (a stage evaluates each once, NetworkProblem::set_end_states)
     std::map<std::string, std::shared_ptr<Function<1>>> far_end_functions;
-    /// per vertex: whether its initial value was given (else the default)
-    std::vector<bool> value_given;
+    /// per vertex: the parameter that gave its initial value ("": the
+    /// default, Network/vertex initial value)
+    std::vector<std::string> value_given;
     /// the graph file's vertex ids, in the order of graph.vertices
     std::vector<long> vertex_ids;
     void

@@ -39,9 +39,17 @@
  * All three are monotone (nondecreasing in u_l, nonincreasing in u_r) under
  * the CFL condition (4.7) dt max|f'| <= dx / 2.
  *
- * Admissible set: finite states. (Traffic densities outside [0, alpha] are
- * unphysical but the flux is defined there; at degree 0 the scheme is
- * monotone and keeps u in the range of the data by Proposition 4.11.)
+ * Admissible set (admissible_range()): the densities 0 <= u <= alpha of a
+ * traffic road (empty to jammed: beyond, f < 0 and cars would drive
+ * backwards), every finite u for the linear and Burgers' laws. The vertex
+ * value u_0 enters the numerical flux at each edge end (vertex_range()): a
+ * road into the vertex takes it as its downstream state, so u_0 <= alpha of
+ * every such road (else its flux into the vertex turns negative); a road out
+ * of it takes, with the upwind and Godunov fluxes, only the demand
+ * min(u_0, alpha/2), so there a queue above its alpha (of a wider road) is
+ * its capacity. The single vertex value of the paper's scheme (4.1b) cannot
+ * go on where a junction fills beyond a road into it (the network engine
+ * stops the run there; doc/network.md).
  *
  * EdgeLaw is what the network engine (granular_dg/network/network.h) asks of
  * the physics of an edge: its flux law with the method's numerical flux.
@@ -52,6 +60,7 @@
 #include <granular_dg/base/parameters.h>
 #include <granular_dg/dg/numerical_flux.h>
 
+#include <array>
 #include <cmath>
 #include <sstream>
 #include <string>
@@ -205,6 +214,15 @@ namespace granular_dg::network
         }
     }
 
+    /// [0, alpha] for traffic, the whole line otherwise
+    std::array<double, 2>
+    admissible_range() const
+    {
+      if (law == FluxLaw::traffic)
+        return {{0., alpha}};
+      return {{-INFINITY, INFINITY}};
+    }
+
     /// "burgers f = u^2/2", for messages and output headers
     std::string
     describe() const
@@ -250,6 +268,26 @@ namespace granular_dg::network
     flux(const Number &u_l, const Number &u_r) const
     {
       return f.numerical_flux(type, u_l, u_r);
+    }
+
+    /// the states the law admits, [lo, hi] (infinite where unbounded)
+    std::array<double, 2>
+    admissible_range() const
+    {
+      return f.admissible_range();
+    }
+
+    /// The vertex values u_0 for which the flux through a vertex end of the
+    /// edge (incoming: its end, u_0 the right state) is physical: the
+    /// admissible range, but at the start of a traffic road the upwind and
+    /// Godunov fluxes take the demand min(u_0, alpha/2) and admit any u_0 >= 0.
+    std::array<double, 2>
+    vertex_range(const bool incoming) const
+    {
+      auto r = admissible_range();
+      if (!incoming && f.law == FluxLaw::traffic && type != NumericalFlux::local_lax_friedrichs)
+        r[1] = INFINITY;
+      return r;
     }
 
     std::string
