@@ -133,13 +133,14 @@ namespace granular_dg
 
   namespace
   {
-    /// Each line of a prm file with the "Section/Sub/" path in force on it.
+    /// Each line of a prm file with the "Section/Sub/" path in force on it
+    /// (prefix: the path in force where the file is included).
     std::vector<std::pair<std::string, std::string>>
-    lines_with_sections(const std::string &filename)
+    lines_with_sections(const std::string &filename, const std::string &prefix = "")
     {
       std::ifstream                                     in(filename);
       std::vector<std::pair<std::string, std::string>> lines;
-      std::string                                       path, text;
+      std::string                                       path = prefix, text;
       std::vector<std::string>                          stack;
       const std::regex enter(R"(^\s*subsection\s+(.*\S)\s*$)");
       const std::regex leave(R"(^\s*end\s*$)");
@@ -152,11 +153,20 @@ namespace granular_dg
             stack.push_back(m[1]);
           else if (std::regex_match(text, leave) && !stack.empty())
             stack.pop_back();
-          path.clear();
+          path = prefix;
           for (const auto &s : stack)
             path += s + "/";
         }
       return lines;
+    }
+
+    /// the file an `include` line names, or "" for any other line
+    std::string
+    included_file(const std::string &line)
+    {
+      static const std::regex include(R"(^\s*include\s+(.*\S)\s*$)");
+      std::smatch             m;
+      return std::regex_match(line, m, include) ? m[1].str() : "";
     }
 
     /// The "Section/Sub/" path in force at line `line` (1-based) of a prm
@@ -168,14 +178,17 @@ namespace granular_dg
       return line >= 1 && line <= lines.size() ? lines[line - 1].first : "";
     }
 
-    /// set_parameter_origin() for every entry the file sets: "FILE line N";
-    /// a warning (rank 0) for an entry set twice, whose last value counts.
+    /// set_parameter_origin() for every entry the file sets: "FILE line N",
+    /// and those of the files it includes (relative to the parameter file,
+    /// in the section where the include line stands); a warning (rank 0)
+    /// for an entry set twice in one file, whose last value counts.
     void
-    record_parameter_origins(const std::string &filename)
+    record_parameter_origins(const std::string &filename, const std::string &prefix = "",
+                             const unsigned int depth = 0)
     {
       const std::regex set(R"(^\s*set\s+(.*\S)\s*=.*$)");
       std::smatch      m;
-      const auto       lines = lines_with_sections(filename);
+      const auto       lines = lines_with_sections(filename, prefix);
       std::map<std::string, unsigned int> first;
       const bool root = !Utilities::MPI::job_supports_mpi() ||
                         Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) == 0;
@@ -189,6 +202,9 @@ namespace granular_dg
                         << "): the last value counts" << std::endl;
             set_parameter_origin(name, filename + " line " + std::to_string(n + 1));
           }
+        else if (const std::string file = included_file(lines[n].second);
+                 !file.empty() && depth < 8)
+          record_parameter_origins(resolve_input_path(file), lines[n].first, depth + 1);
     }
 
     /// Turns ParameterHandler's messages into our one-line form naming the
@@ -215,30 +231,35 @@ namespace granular_dg
       static const std::regex set_section(R"(.*There is no subsection <(.*)> .*)");
 
       const std::string hint = " (granular_dg --print-parameters SCENE lists them all)";
+      // the line of a file the parameter file includes: that file's
+      static const std::regex file_of(R"(Line <\d+> of file <([^>]*)>.*)");
+      std::string             file = filename;
+      if (std::regex_match(message, m, file_of) && !is_parameter_file(m[1].str()))
+        file = resolve_input_path(m[1].str());
       if (std::regex_match(message, m, file_pattern))
         {
           const unsigned int line = std::stoul(m[1]);
-          return "parameter '" + section_path_at(filename, line) + m[3].str() +
-                 "' = '" + m[2].str() + "' (" + filename + " line " + m[1].str() +
+          return "parameter '" + section_path_at(file, line) + m[3].str() +
+                 "' = '" + m[2].str() + "' (" + file + " line " + m[1].str() +
                  ") is not allowed: " + m[4].str();
         }
       if (std::regex_match(message, m, file_unknown))
         {
           const unsigned int line = std::stoul(m[1]);
-          return "unknown parameter '" + section_path_at(filename, line) +
-                 m[2].str() + "' (" + filename + " line " + m[1].str() + ")" + hint;
+          return "unknown parameter '" + section_path_at(file, line) +
+                 m[2].str() + "' (" + file + " line " + m[1].str() + ")" + hint;
         }
       if (std::regex_match(message, m, file_section))
         {
           // the path including the subsection opened on that line
           const unsigned int line = std::stoul(m[1]);
-          std::string        path = section_path_at(filename, line + 1);
+          std::string        path = section_path_at(file, line + 1);
           path.pop_back();
-          return "unknown section '" + path + "' (" + filename + " line " + m[1].str() + ")" +
+          return "unknown section '" + path + "' (" + file + " line " + m[1].str() + ")" +
                  hint;
         }
       if (std::regex_match(message, m, file_line))
-        return filename + " line " + m[1].str() + ": " + m[2].str();
+        return file + " line " + m[1].str() + ": " + m[2].str();
       if (!set_path.empty())
         {
           if (std::regex_match(message, m, set_pattern))
@@ -278,13 +299,22 @@ namespace granular_dg
     require_readable_parameter_file(filename);
     set_parameter_file(filename);
     record_parameter_origins(filename);
+    // an `include` line names a file relative to the parameter file, as
+    // every path in it does (resolve_input_path()); deal.II opens it
+    // relative to the working directory, which is the parameter file's
+    // while it parses
+    const auto cwd  = std::filesystem::current_path();
+    const auto file = std::filesystem::absolute(filename);
+    std::filesystem::current_path(file.parent_path());
     try
       {
         // undeclared entries are errors: a typo must never be ignored
-        prm.parse_input(filename, "", false);
+        prm.parse_input(file.string(), "", false);
+        std::filesystem::current_path(cwd);
       }
     catch (const std::exception &e)
       {
+        std::filesystem::current_path(cwd);
         throw InputError(
           translate_parameter_error(one_line_message(e), filename, ""));
       }

@@ -37,3 +37,12 @@ granular_dg_test(input/cfl_check_off PRM ../prm/layered_1d.prm
 # completes, with one warning line on stderr (it was silently ignored).
 granular_dg_test(input/threshold_without_indicator PRM input/threshold_without_indicator.prm
   EXPECT_FILES out/summary.json)
+
+# include: relative to the parameter file (here run from the test's own
+# directory with the file's absolute path in the source tree), and a bad value
+# in an included file named with that file and line.
+granular_dg_test(input/include_relative
+  ARGS ${CMAKE_CURRENT_SOURCE_DIR}/input/include_relative.prm --set Output/directory=out
+  COMPARE summary.json:status,final_time NUMDIFF -a 0 -r 0)
+granular_dg_test(input/include_bad PRM input/include_bad.prm
+  COPY input/include_common.prm input/include_bad_value.prm EXIT 2 KEEP_OUTPUT)

@@ -328,13 +328,16 @@ namespace granular_dg::network
     /// inflow - outflow through the free ends of this rank's edges in the
     /// last stage (the fluxes the edges used)
     double far_end_inflow() const;
-    void   post_stage(NetworkState &s, double stage_time);
+    /// the limiter and the checks after a stage (last: the step's last)
+    void   post_stage(NetworkState &s, double stage_time, bool last);
     /// Inadmissible unless s is finite and admissible (and, at degree 0,
-    /// in the range of the step); initial: s is the initial state.
-    void   post_stage_checks(const NetworkState &s, double stage_time, bool initial = false);
+    /// in the range of the step); means: check every cell mean against its
+    /// edge's admissible range too (the initial state and, at degrees >= 1,
+    /// the state of a step).
+    void   post_stage_checks(const NetworkState &s, double stage_time, bool means);
     /// this rank's part of post_stage_checks (principle: check the maximum
     /// principle against bounds)
-    void   local_checks(const NetworkState &s, double stage_time, bool principle, bool initial);
+    void   local_checks(const NetworkState &s, double stage_time, bool principle, bool means);
     /// Inadmissible unless every vertex value, far-end datum and (where
     /// means) cell mean of s lies in the range its laws admit
     /// (Law::admissible_range()).
@@ -465,6 +468,16 @@ namespace granular_dg::network
       std::array<EdgeEnd, 2> end;
     };
     std::vector<Bounded>                             vertex_range;
+    /// [lo, hi] widened by 1e-12 of its larger finite bound
+    static std::array<double, 2>
+    widened(const std::array<double, 2> &r)
+    {
+      double scale = 0;
+      for (const double b : r)
+        if (std::isfinite(b))
+          scale = std::max(scale, std::abs(b));
+      return {{r[0] - 1e-12 * scale, r[1] + 1e-12 * scale}};
+    }
     std::vector<std::pair<unsigned int, std::array<double, 2>>> bounded_edges;
     /// the range of the current step (degree 0's maximum principle)
     std::pair<double, double>  bounds{-INFINITY, INFINITY};
