@@ -10,6 +10,8 @@
 #include <granular_dg/base/vectorized_math.h>
 #include <granular_dg/network/network.h>
 
+#include <immintrin.h>
+
 #include <algorithm>
 #include <cmath>
 
@@ -56,6 +58,43 @@ namespace granular_dg::network
       double s[8], t[8];
       _mm512_storeu_pd(s, sum);
       _mm512_storeu_pd(t, tv);
+      return {{pairwise_sum(s), pairwise_sum(t)}};
+    }
+#elif defined(__AVX__)
+#  define GRANULAR_DG_CONTIGUOUS_EDGE_SUMS
+    /// edge_sums() below at stride 1 (degree 0), the partial sums in the
+    /// lanes of two registers each (lanes 0-3 and 4-7): the same additions
+    /// in the same order, so the same result to the bit. Masked loads end
+    /// the edge; the lanes past it keep their sums (blend).
+    std::array<double, 2>
+    contiguous_edge_sums(const double *mean, const unsigned int n)
+    {
+      // the first k of the 8 lanes, half h: lanes 4 h .. 4 h + 3
+      static const long long ones[16] = {-1, -1, -1, -1, -1, -1, -1, -1};
+      const auto             first    = [](const unsigned int k, const unsigned int h) {
+        return _mm256_loadu_si256(
+          reinterpret_cast<const __m256i *>(ones + 8 - std::min(k, 8u) + 4 * h));
+      };
+      const __m256d sign = _mm256_set1_pd(-0.);
+      __m256d       sum[2] = {_mm256_setzero_pd(), _mm256_setzero_pd()};
+      __m256d       tv[2]  = {_mm256_setzero_pd(), _mm256_setzero_pd()};
+      for (unsigned int c = 0; c < n; c += 8)
+        for (unsigned int h = 0; h < 2; ++h)
+          {
+            // lane l: cell c + 4 h + l and the jump from it to the next
+            const __m256i cells = first(n - c, h), jumps = first(n - c - 1, h);
+            const __m256d x     = _mm256_maskload_pd(mean + c + 4 * h, cells);
+            const __m256d next  = _mm256_maskload_pd(mean + c + 4 * h + 1, jumps);
+            sum[h] = _mm256_blendv_pd(sum[h], _mm256_add_pd(sum[h], x), _mm256_castsi256_pd(cells));
+            tv[h]  = _mm256_blendv_pd(tv[h],
+                                     _mm256_add_pd(tv[h], _mm256_andnot_pd(sign, _mm256_sub_pd(next, x))),
+                                     _mm256_castsi256_pd(jumps));
+          }
+      double s[8], t[8];
+      _mm256_storeu_pd(s, sum[0]);
+      _mm256_storeu_pd(s + 4, sum[1]);
+      _mm256_storeu_pd(t, tv[0]);
+      _mm256_storeu_pd(t + 4, tv[1]);
       return {{pairwise_sum(s), pairwise_sum(t)}};
     }
 #endif
@@ -107,7 +146,8 @@ namespace granular_dg::network
     std::array<double, 2>
     edge_sums(const double *mean, const unsigned int stride, const unsigned int n)
     {
-#if DEAL_II_VECTORIZATION_WIDTH_IN_BITS >= 512 && defined(__AVX512F__)
+#if (DEAL_II_VECTORIZATION_WIDTH_IN_BITS >= 512 && defined(__AVX512F__)) || \
+  defined(GRANULAR_DG_CONTIGUOUS_EDGE_SUMS)
       if (stride == 1)
         return contiguous_edge_sums(mean, n);
 #endif

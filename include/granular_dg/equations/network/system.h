@@ -101,7 +101,7 @@ namespace granular_dg::network
     double  alpha = 1.; ///< capacity scaling of the traffic flux
 
     template <typename Number>
-    Number
+    DEAL_II_ALWAYS_INLINE inline Number
     value(const Number &u) const
     {
       switch (law)
@@ -117,7 +117,7 @@ namespace granular_dg::network
 
     /// f'(u), the characteristic speed
     template <typename Number>
-    Number
+    DEAL_II_ALWAYS_INLINE inline Number
     derivative(const Number &u) const
     {
       switch (law)
@@ -133,7 +133,7 @@ namespace granular_dg::network
 
     /// The increasing part f^+ of the Engquist-Osher splitting f = f^+ + f^-
     template <typename Number>
-    Number
+    DEAL_II_ALWAYS_INLINE inline Number
     increasing_part(const Number &u) const
     {
       switch (law)
@@ -149,7 +149,7 @@ namespace granular_dg::network
 
     /// The decreasing part f^- (f^-(c) = 0 at the extremum c)
     template <typename Number>
-    Number
+    DEAL_II_ALWAYS_INLINE inline Number
     decreasing_part(const Number &u) const
     {
       switch (law)
@@ -165,7 +165,7 @@ namespace granular_dg::network
 
     /// Engquist-Osher flux; the upwind flux f(u_l) for increasing f
     template <typename Number>
-    Number
+    DEAL_II_ALWAYS_INLINE inline Number
     engquist_osher(const Number &u_l, const Number &u_r) const
     {
       return increasing_part(u_l) + decreasing_part(u_r);
@@ -174,7 +174,7 @@ namespace granular_dg::network
     /// Godunov flux: min of f over [u_l, u_r] if u_l <= u_r, else the max
     /// over [u_r, u_l]; in closed form for the convex and concave laws.
     template <typename Number>
-    Number
+    DEAL_II_ALWAYS_INLINE inline Number
     godunov(const Number &u_l, const Number &u_r) const
     {
       switch (law)
@@ -190,7 +190,7 @@ namespace granular_dg::network
     }
 
     template <typename Number>
-    Number
+    DEAL_II_ALWAYS_INLINE inline Number
     lax_friedrichs(const Number &u_l, const Number &u_r) const
     {
       const Number lambda =
@@ -200,7 +200,7 @@ namespace granular_dg::network
 
     /// The numerical flux F(u_l, u_r) in the direction of the edge.
     template <typename Number>
-    Number
+    DEAL_II_ALWAYS_INLINE inline Number
     numerical_flux(const NumericalFlux type, const Number &u_l, const Number &u_r) const
     {
       switch (type)
@@ -248,7 +248,7 @@ namespace granular_dg::network
     static constexpr const char *name = "scalar conservation law";
 
     template <typename Number>
-    Number
+    DEAL_II_ALWAYS_INLINE inline Number
     value(const Number &u) const
     {
       return f.value(u);
@@ -256,7 +256,7 @@ namespace granular_dg::network
 
     /// f'(u), the characteristic speed
     template <typename Number>
-    Number
+    DEAL_II_ALWAYS_INLINE inline Number
     derivative(const Number &u) const
     {
       return f.derivative(u);
@@ -264,7 +264,7 @@ namespace granular_dg::network
 
     /// F(u_l, u_r) in the direction of the edge
     template <typename Number>
-    Number
+    DEAL_II_ALWAYS_INLINE inline Number
     flux(const Number &u_l, const Number &u_r) const
     {
       return f.numerical_flux(type, u_l, u_r);
