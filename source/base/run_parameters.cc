@@ -189,7 +189,9 @@ namespace granular_dg
     b.section("Checkpoint");
     b.add("every steps", checkpoint_steps, Patterns::Integer(0),
           "Write a checkpoint (Output/directory/checkpoints/step-N.ckpt, the newest two are "
-          "kept) every this many steps (0: not by steps).");
+          "kept) every this many steps (0: not by steps).")
+      .check([this](const unsigned long n) { return !(n > 0 && convergence); },
+             "0 when Convergence/enabled is true (a study writes no checkpoints)");
     b.add("every seconds", checkpoint_seconds, Patterns::Double(0),
           "Write a checkpoint every this many seconds of wall time (0: not by time). A SIGINT "
           "or SIGTERM always writes one before the run stops.");

@@ -75,3 +75,8 @@ granular_dg_test(bad_input/max_steps_in_study PRM ${base}
 granular_dg_test(bad_input/vertex_without_volume_value PRM ../prm/network_two_stars.prm
   ARGS --set "Network/Vertex 2/width factor=0" --set "Network/Vertex 2/initial value=0.3"
   EXIT 2 KEEP_OUTPUT NUMDIFF -a 0 -r 0)
+granular_dg_test(bad_input/skip_at_rest_network PRM ../prm/network_example_7_3.prm
+  ARGS --set "Time stepping/skip cells at rest=true" EXIT 2 KEEP_OUTPUT NUMDIFF -a 0 -r 0)
+granular_dg_test(bad_input/checkpoint_in_study PRM ${base}
+  ARGS --set "Checkpoint/every steps=10" --set Convergence/enabled=true
+  EXIT 2 KEEP_OUTPUT NUMDIFF -a 0 -r 0)

@@ -143,9 +143,11 @@ namespace granular_dg::network
     template <unsigned int nm>
     void raw_blending_factors(const double *src, unsigned int e) const;
     double blending_factor(unsigned int e, unsigned int c) const;
+    /// the largest speed |f'| of edge e: of its SIMD batches (lanes) and
+    /// of its other cells and vertex ends (rest), not yet divided by h
     template <unsigned int nm>
     void max_speed_edge(const double *u, const double *vertex_values, unsigned int e,
-                        VectorizedArray<double> &lanes, double &result) const;
+                        VectorizedArray<double> &lanes, double &rest) const;
     template <unsigned int nm>
     unsigned int limit_edge(double *u, unsigned int e) const;
     template <unsigned int nm>
@@ -163,6 +165,12 @@ namespace granular_dg::network
     /// first[e]: the cells before edge e (first[n_edges]: all)
     std::vector<std::size_t>  first;
     std::vector<double>       h, inverse_h;
+    /// the distinct cell sizes (at most max_sizes; else empty) and the one
+    /// of each edge: max_speed_over_h() divides once per size, not per edge
+    /// (a division by h > 0 is monotone: the same maximum to the bit)
+    static constexpr unsigned int max_sizes = 8;
+    std::vector<double>           distinct_h;
+    std::vector<unsigned char>    size_of_edge;
     std::vector<EndKind>      end_kind;
     std::vector<double>       outer;
     /// boundary_flux(): 2 per edge, written by stage()

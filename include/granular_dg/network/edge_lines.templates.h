@@ -50,7 +50,15 @@ namespace granular_dg::network
     for (const unsigned int n : cells)
       first.push_back(first.back() + n);
     for (const double size : h)
-      inverse_h.push_back(1. / size);
+      {
+        inverse_h.push_back(1. / size);
+        auto at = std::find(distinct_h.begin(), distinct_h.end(), size);
+        if (at == distinct_h.end() && distinct_h.size() <= max_sizes)
+          at = distinct_h.insert(distinct_h.end(), size);
+        size_of_edge.push_back(at - distinct_h.begin());
+      }
+    if (distinct_h.size() > max_sizes)
+      distinct_h.clear(), size_of_edge.clear();
 
     const QGauss<1> q(modes + 1);
     n_q = q.size();
@@ -366,8 +374,31 @@ namespace granular_dg::network
       // (the largest over the lanes once at the end: max is exact in any order)
       VA     lanes  = 0.;
       double result = 0;
-      for (unsigned int e = 0; e < n_edges(); ++e)
-        max_speed_edge<decltype(nm)::value>(u, vertex_values, e, lanes, result);
+      if (distinct_h.empty())
+        for (unsigned int e = 0; e < n_edges(); ++e)
+          {
+            VA     edge_lanes = 0.;
+            double rest       = 0.;
+            max_speed_edge<decltype(nm)::value>(u, vertex_values, e, edge_lanes, rest);
+            lanes  = std::max(lanes, edge_lanes / VA(h[e]));
+            result = std::max(result, rest / h[e]);
+          }
+      else
+        {
+          // the largest speeds of the edges of each size, then divided
+          std::array<VA, max_sizes>     size_lanes;
+          std::array<double, max_sizes> size_rest{};
+          for (auto &l : size_lanes)
+            l = 0.;
+          for (unsigned int e = 0; e < n_edges(); ++e)
+            max_speed_edge<decltype(nm)::value>(u, vertex_values, e, size_lanes[size_of_edge[e]],
+                                                size_rest[size_of_edge[e]]);
+          for (unsigned int s = 0; s < distinct_h.size(); ++s)
+            {
+              lanes  = std::max(lanes, size_lanes[s] / VA(distinct_h[s]));
+              result = std::max(result, size_rest[s] / distinct_h[s]);
+            }
+        }
       for (unsigned int l = 0; l < W; ++l)
         result = std::max(result, lanes[l]);
       return result;
@@ -375,15 +406,15 @@ namespace granular_dg::network
   }
 
   /// dg::LineOperator::max_speed_impl() on edge e: the largest speed of its
-  /// cells (SIMD batches into lanes, the rest into result) and of the vertex
-  /// values at its vertex ends (into result), divided by h once for the
-  /// batches and once for the rest (division by h > 0 is monotone: the same
-  /// maximum as dividing every speed)
+  /// cells (SIMD batches into lanes, the rest into rest) and of the vertex
+  /// values at its vertex ends (into rest); the caller divides by h
+  /// (division by h > 0 is monotone: the same maximum as dividing every
+  /// speed)
   template <typename Law>
   template <unsigned int nm>
   void
   EdgeLines<Law>::max_speed_edge(const double *src, const double *vertex_values,
-                                 const unsigned int e, VA &lanes, double &result) const
+                                 const unsigned int e, VA &lanes, double &rest) const
   {
     const Law          f          = laws[e];
     const auto         cell_speed = [&](const auto *u) {
@@ -398,23 +429,17 @@ namespace granular_dg::network
     };
     unsigned int c = 0;
     if (W > 1 && cells[e] >= W)
-      {
-        VA edge_lanes = 0.;
-        for (; c + W <= cells[e]; c += W)
-          {
-            VA u[nm];
-            load_cell_major<nm>(src + index(e, c), u);
-            edge_lanes = std::max(edge_lanes, cell_speed(u));
-          }
-        lanes = std::max(lanes, edge_lanes / VA(h[e]));
-      }
-    double rest = 0.;
+      for (; c + W <= cells[e]; c += W)
+        {
+          VA u[nm];
+          load_cell_major<nm>(src + index(e, c), u);
+          lanes = std::max(lanes, cell_speed(u));
+        }
     for (; c < cells[e]; ++c)
       rest = std::max(rest, cell_speed(src + index(e, c)));
     for (const unsigned int side : {0u, 1u})
       if (end_kind[2 * e + side] == EndKind::vertex)
         rest = std::max(rest, std::abs(f.derivative(vertex_values[2 * e + side])));
-    result = std::max(result, rest / h[e]);
   }
 
   // ---------------------------------------------------------------- the limiter

@@ -333,15 +333,19 @@ namespace granular_dg::network
     /// Inadmissible unless s is finite and admissible (and, at degree 0,
     /// in the range of the step); means: check every cell mean against its
     /// edge's admissible range too (the initial state and, at degrees >= 1,
-    /// the state of a step).
-    void   post_stage_checks(const NetworkState &s, double stage_time, bool means);
+    /// the state of a step); initial: s is the initial state.
+    void   post_stage_checks(const NetworkState &s, double stage_time, bool means,
+                             bool initial = false);
     /// this rank's part of post_stage_checks (principle: check the maximum
     /// principle against bounds)
-    void   local_checks(const NetworkState &s, double stage_time, bool principle, bool means);
-    /// Inadmissible unless every vertex value, far-end datum and (where
-    /// means) cell mean of s lies in the range its laws admit
-    /// (Law::admissible_range()).
-    void   check_admissible_ranges(const NetworkState &s, double stage_time, bool means) const;
+    void   local_checks(const NetworkState &s, double stage_time, bool principle, bool means,
+                        bool initial);
+    /// Inadmissible unless every far-end datum, (where means) cell mean and
+    /// vertex value of s lies in the range its laws admit
+    /// (Law::admissible_range(), vertex_range()); after a stage (initial
+    /// false) the upper bounds only.
+    void   check_admissible_ranges(const NetworkState &s, double stage_time, bool means,
+                                   bool initial) const;
     /// Degree 0: the range [min, max] of the cell averages, the vertex values
     /// and the free ends' Dirichlet data of the step from t to t + dt.
     std::pair<double, double> range_of_step(double t, double dt) const;
@@ -468,15 +472,21 @@ namespace granular_dg::network
       std::array<EdgeEnd, 2> end;
     };
     std::vector<Bounded>                             vertex_range;
-    /// [lo, hi] widened by 1e-12 of its larger finite bound
+    /// r widened by 1e-12 of the larger finite bound of the law's
+    /// admissible range a (round-off)
     static std::array<double, 2>
-    widened(const std::array<double, 2> &r)
+    widened(const std::array<double, 2> &r, const std::array<double, 2> &a)
     {
       double scale = 0;
-      for (const double b : r)
+      for (const double b : a)
         if (std::isfinite(b))
           scale = std::max(scale, std::abs(b));
       return {{r[0] - 1e-12 * scale, r[1] + 1e-12 * scale}};
+    }
+    static std::array<double, 2>
+    widened(const std::array<double, 2> &r)
+    {
+      return widened(r, r);
     }
     std::vector<std::pair<unsigned int, std::array<double, 2>>> bounded_edges;
     /// the range of the current step (degree 0's maximum principle)

@@ -83,7 +83,8 @@ namespace granular_dg::network
         Bounded b{{{-INFINITY, INFINITY}}, {}};
         for (const auto &end : j.ends())
           {
-            const auto r = widened(laws[end.edge].vertex_range(end.incoming));
+            const auto r = widened(laws[end.edge].vertex_range(end.incoming),
+                                   laws[end.edge].admissible_range());
             if (r[0] > b.range[0])
               b.range[0] = r[0], b.end[0] = end;
             if (r[1] < b.range[1])
@@ -307,7 +308,7 @@ namespace granular_dg::network
     bounds         = {-INFINITY, INFINITY};
     try
       {
-        post_stage_checks(s, time, true);
+        post_stage_checks(s, time, true, true);
       }
     catch (Inadmissible &f)
       {
@@ -569,7 +570,7 @@ namespace granular_dg::network
   template <typename Law>
   void
   NetworkProblem<Law>::post_stage_checks(const NetworkState &s, const double stage_time,
-                                         const bool means)
+                                         const bool means, const bool initial)
   {
     const bool principle =
       method.degree == 0 && std::isfinite(bounds.first) && std::isfinite(bounds.second);
@@ -588,7 +589,7 @@ namespace granular_dg::network
     std::optional<Inadmissible> found;
     try
       {
-        local_checks(s, stage_time, principle, means);
+        local_checks(s, stage_time, principle, means, initial);
       }
     catch (const Inadmissible &f)
       {
@@ -602,7 +603,8 @@ namespace granular_dg::network
   template <typename Law>
   void
   NetworkProblem<Law>::local_checks(const NetworkState &s, const double stage_time,
-                                    const bool principle, const bool means)
+                                    const bool principle, const bool means,
+                                    const bool initial)
   {
     for (const unsigned int v : ranks->vertices())
       if (!std::isfinite(s.vertices[v]))
@@ -613,7 +615,7 @@ namespace granular_dg::network
     // (the maximum principle checks it): its means stay within its
     // initial and far-end data and the values of its vertices, which are
     // checked every stage. The means of higher degrees: after every step.
-    check_admissible_ranges(s, stage_time, edges.finite && means);
+    check_admissible_ranges(s, stage_time, edges.finite && means, initial);
     if (principle && edges.finite)
       check_maximum_principle(s, stage_time, edges.lo, edges.hi);
     if (edges.finite)
@@ -635,11 +637,16 @@ namespace granular_dg::network
   template <typename Law>
   void
   NetworkProblem<Law>::check_admissible_ranges(const NetworkState &s, const double stage_time,
-                                               const bool means) const
+                                               const bool means, const bool initial) const
   {
-    // (NaN is not outside: the finiteness checks report it)
-    const auto outside = [](const double x, const std::array<double, 2> &r) {
-      return x < r[0] || x > r[1];
+    // After a stage only the upper bounds: a traffic vertex value or mean
+    // above alpha is a junction that overfills (the single vertex value's
+    // limit), while the paper's time step does not keep the value of a
+    // vertex without inflow at u_0 >= 0 (doc/network.md): the scheme's
+    // undershoot, not a state the model cannot hold. (NaN is not outside:
+    // the finiteness checks report it.)
+    const auto outside = [initial](const double x, const std::array<double, 2> &r) {
+      return (initial && x < r[0]) || x > r[1];
     };
     const auto interval = [](const std::array<double, 2> &r) {
       return "[" + format_number(r[0]) + ", " + format_number(r[1]) + "]";
@@ -648,23 +655,15 @@ namespace granular_dg::network
       return interval(laws[k].admissible_range()) + ", the states " + net.edges[k].label + " (" +
              laws[k].describe() + ") admits";
     };
-    for (const unsigned int v : ranks->vertices())
-      if (const Bounded &b = vertex_range[v]; outside(s.vertices[v], b.range))
-        {
-          const EdgeEnd &end = b.end[s.vertices[v] > b.range[1]];
-          throw failure(stage_time, -1 - int(v), 0., s.vertices[v],
-                        "vertex value outside " +
-                          interval(laws[end.edge].vertex_range(end.incoming)) +
-                          ", where the flux at the " + (end.incoming ? "end" : "start") +
-                          " of " + net.edges[end.edge].label + " (" +
-                          laws[end.edge].describe() + ") is physical");
-        }
     for (const auto &face : data_faces)
-      if (const double g = lines->outer_state(local(face.first), face.second);
-          outside(g, widened(laws[face.first].admissible_range())))
-        throw failure(stage_time, int(face.first), far_end_point(face), g,
-                      "far-end data at t = " + format_number(data_time) + " outside " +
-                        admitted(face.first));
+      {
+        const double g = lines->outer_state(local(face.first), face.second);
+        const auto   r = widened(laws[face.first].admissible_range());
+        if (g < r[0] || g > r[1])
+          throw failure(stage_time, int(face.first), far_end_point(face), g,
+                        "far-end data at t = " + format_number(data_time) + " outside " +
+                          admitted(face.first));
+      }
     const unsigned int stride = lines->n_modes();
     for (unsigned int i = 0; means && i < bounded_edges.size(); ++i)
       {
@@ -682,13 +681,25 @@ namespace granular_dg::network
           }
         if (c < n)
           lo0 = std::min(lo0, mean[c * stride]), hi0 = std::max(hi0, mean[c * stride]);
-        if (std::min(lo0, lo1) >= range[0] && std::max(hi0, hi1) <= range[1])
+        if (!outside(std::min(lo0, lo1), range) && !outside(std::max(hi0, hi1), range))
           continue;
-        for (unsigned int c = 0; c < n; ++c)
-          if (outside(mean[c * stride], range))
-            throw failure(stage_time, int(k), (c + 0.5) * edge_h[k], mean[c * stride],
+        for (unsigned int cell = 0; cell < n; ++cell)
+          if (outside(mean[cell * stride], range))
+            throw failure(stage_time, int(k), (cell + 0.5) * edge_h[k], mean[cell * stride],
                           "cell mean outside " + admitted(k));
       }
+    // (after the edges: a vertex's initial value balances their traces)
+    for (const unsigned int v : ranks->vertices())
+      if (const Bounded &b = vertex_range[v]; outside(s.vertices[v], b.range))
+        {
+          const EdgeEnd &end = b.end[s.vertices[v] > b.range[1]];
+          throw failure(stage_time, -1 - int(v), 0., s.vertices[v],
+                        "vertex value outside " +
+                          interval(laws[end.edge].vertex_range(end.incoming)) +
+                          ", where the flux at the " + (end.incoming ? "end" : "start") +
+                          " of " + net.edges[end.edge].label + " (" +
+                          laws[end.edge].describe() + ") is physical");
+        }
   }
 
   template <typename Law>

@@ -409,6 +409,9 @@ namespace granular_dg::network
               "quiet cells is built in the DG solver of the 1D scenes, not for the network)");
       require(m.engine != dg::Engine::matrix_free, "Discretization/engine", "matrix_free",
               "auto or line here: the network's edges run in one line engine (EdgeLines)");
+      require(!m.skip_at_rest, "Time stepping/skip cells at rest", "true",
+              "false here: the network computes every cell of every edge in every step "
+              "(skipping cells at rest is built in the 2D DG solver)");
       require(!m.write_modes, "Output/write modes", "true",
               "false here: modes-NNNN.csv is written by the 1D scenes of the DG solver (the "
               "network writes its edges' samples, profile-NNNN-edge-K.csv)");
