@@ -80,3 +80,8 @@ granular_dg_test(bad_input/skip_at_rest_network PRM ../prm/network_example_7_3.p
 granular_dg_test(bad_input/checkpoint_in_study PRM ${base}
   ARGS --set "Checkpoint/every steps=10" --set Convergence/enabled=true
   EXIT 2 KEEP_OUTPUT NUMDIFF -a 0 -r 0)
+# 2D entries set in 1D (they had been ignored): Mesh/cells y, and the top side.
+granular_dg_test(bad_input/cells_y_in_1d PRM ${base} ARGS --set "Mesh/cells y=9"
+  EXIT 2 KEEP_OUTPUT NUMDIFF -a 0 -r 0)
+granular_dg_test(bad_input/top_side_in_1d PRM ${base} ARGS --set "Boundary conditions/top=wall"
+  EXIT 2 KEEP_OUTPUT NUMDIFF -a 0 -r 0)

@@ -50,6 +50,12 @@ namespace granular_dg::layered_strip
       .check([this](const double y) { return dim == 1 || y > lo[1]; }, "must be > y min");
     b.add("cells y", cells[1], Patterns::Integer(1),
           "Cells in y (2D); with horizontal layers, an integer number per layer.");
+    if (b.reading() && dim == 1)
+      for (const auto &[name, value] : {std::pair<std::string, std::string>{"y min", format_number(lo[1])},
+                                        {"y max", format_number(hi[1])},
+                                        {"cells y", std::to_string(cells[1])}})
+        require(parameter_origin("Mesh/" + name).empty(), "Mesh/" + name, value,
+                "unset in 1D (Mesh/dimension = 1)");
     bind_materials(b);
     bind_data(b, initial, "Initial condition");
     bind_sides(b);
@@ -159,6 +165,15 @@ namespace granular_dg::layered_strip
           "never.");
     if (!b.reading())
       return;
+    // the 2D entries, set in 1D, would be ignored
+    for (unsigned int k = 2; dim == 1 && k < 4; ++k)
+      {
+        const std::string side = std::string("Boundary conditions/") + side_label[k];
+        require(parameter_origin(side).empty(), side, side_names.name(sides[k]),
+                "unset in 1D (bottom and top are the sides of a 2D strip)");
+        require(parameter_origin(side + " data").empty(), side + " data", side_data[k],
+                "unset in 1D (bottom and top are the sides of a 2D strip)");
+      }
     sides.resize(2 * dim);
     side_data.resize(2 * dim);
     for (int d = 0; d < dim; ++d)
