@@ -217,8 +217,10 @@ granular_dg_test(network/ring_mass_dg PRM network/ring.prm ${ring_files}
 # Graph validation: one line naming the file, line, edge or vertex; exit 2
 # (hex_id: a vertex id written 0x1 is not an integer id; subnormal: a flux
 # parameter of 1e-308 is not of normal magnitude; isolated_vertex: a
-# vertex only the vertex file lists is blamed on that file and its line).
-foreach(bad duplicate_id negative_length nonfinite subnormal self_loop bad_header hex_id)
+# vertex only the vertex file lists is blamed on that file and its line;
+# burgers_parameter: a parameter on a burgers road, which has none).
+foreach(bad duplicate_id negative_length nonfinite subnormal self_loop bad_header hex_id
+        burgers_parameter)
   granular_dg_test(network/graph_${bad} PRM network/ring.prm
     COPY network/ring_${bad}.csv network/ring_vertices.csv
     ARGS --set "Network/graph file=ring_${bad}.csv" EXIT 2 KEEP_OUTPUT)
@@ -433,3 +435,7 @@ granular_dg_test(network/source_vertex PRM network/source_vertex.prm
 granular_dg_test(network/source_vertex_draining PRM network/source_vertex.prm
   ARGS --set "Network/Edge 1/initial data=0.8" --set "Network/vertex initial value=0.1"
   COMPARE summary.json:status NUMDIFF -a 0 -r 0)
+# The parameter of another flux law on an Edge N section (it had been
+# accepted and ignored): alpha on a linear edge.
+granular_dg_test(network/edge_alpha_on_linear PRM ../prm/network_example_7_3.prm
+  ARGS --set "Network/Edge 1/alpha=2" EXIT 2 KEEP_OUTPUT)

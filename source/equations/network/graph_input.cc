@@ -358,7 +358,8 @@ namespace granular_dg::network
           "A CSV edge list for large networks (instead of Edge N sections), relative to this "
           "parameter file: a header line, then one edge per line: "
           "id,from,to,length,flux[,parameter[,initial[,far_end[,far_end_data]]]] (from/to: a "
-          "vertex id or free; to may be loop; parameter: a of linear, alpha of traffic; "
+          "vertex id or free; to may be loop; parameter: a of linear, alpha of traffic (empty: "
+          "1), empty for burgers; "
           "initial: a number or an expression in x without commas; far_end: dirichlet or "
           "outflow; far_end_data: a number or an expression in t). Lines starting with # are "
           "comments.");
@@ -541,6 +542,8 @@ namespace granular_dg::network
         e.length = csv_number(table.get(row, "length"), at, "length");
         require(e.length > 0, at + "length", table.get(row, "length"), "must be > 0");
         const std::string law = table.get(row, "flux"), p = table.get(row, "parameter");
+        require(law != "burgers" || p.empty(), at + "parameter", p,
+                "empty for burgers (parameter: a of linear, alpha of traffic)");
         const FluxFunction f =
           make_flux(law, p.empty() ? 1. : csv_number(p, at, "parameter"), at, "parameter");
         const std::string far = table.get(row, "far_end");
@@ -660,6 +663,14 @@ namespace granular_dg::network
         const bool linear = given.flux == "linear";
         const FluxFunction f = make_flux(given.flux, linear ? given.advection_speed : given.alpha,
                                          at, linear ? "advection speed" : "alpha");
+        // the parameter of the other flux law would be ignored
+        require(given.flux == "traffic" || parameter_origin(at + "alpha").empty(), at + "alpha",
+                given.alpha, "unset: the flux of " + section("Edge", i) + " is " + given.flux +
+                               " (alpha scales the traffic flux)");
+        require(linear || parameter_origin(at + "advection speed").empty(),
+                at + "advection speed", given.advection_speed,
+                "unset: the flux of " + section("Edge", i) + " is " + given.flux +
+                  " (the speed of the linear flux)");
         e.far_end = far_end_names.parse(at + "far end", given.far_end);
         require_far_end_used(e, at + "far end", given.far_end,
                              !parameter_origin(at + "far end").empty(), at + "far end data",
