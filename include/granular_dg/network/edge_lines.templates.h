@@ -380,7 +380,9 @@ namespace granular_dg::network
             VA     edge_lanes = 0.;
             double rest       = 0.;
             max_speed_edge<decltype(nm)::value>(u, vertex_values, e, edge_lanes, rest);
-            lanes  = std::max(lanes, edge_lanes / VA(h[e]));
+            // (an edge of fewer than W cells has no batch: nothing to divide)
+            if (W > 1 && cells[e] >= W)
+              lanes = std::max(lanes, edge_lanes / VA(h[e]));
             result = std::max(result, rest / h[e]);
           }
       else

@@ -768,7 +768,7 @@ namespace granular_dg::network
       {
         unsigned int stage = 0;
         rk3.step(*this, u, t, dt, [&](NetworkState &s, const double stage_time, const double) {
-          post_stage(s, stage_time, ++stage == 3);
+          post_stage(s, stage_time, ++stage == n_stages());
         });
         // the Butcher weights of the Shu-Osher SSPRK3: 1/6, 1/6, 2/3
         inflow += dt * (stage_inflow[0] / 6. + stage_inflow[1] / 6. + 2. * stage_inflow[2] / 3.);
