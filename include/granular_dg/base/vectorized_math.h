@@ -229,6 +229,58 @@ namespace granular_dg
       return r;
     }
 #endif
+#if DEAL_II_VECTORIZATION_WIDTH_IN_BITS >= 256 && defined(__AVX2__)
+    /// The cell-major layout of 4 cells of n = 2 or 3 values in AVX2
+    /// registers: the value registers x[k] (lane l: cell l) from the n
+    /// batches b_j of 4 consecutive entries, and back. n = 2: a 2 x 2
+    /// transpose of 128-bit halves and of doubles. n = 3: each value register
+    /// takes one lane of each batch, in distinct lanes, so two blends and one
+    /// lane permute (its own inverse) make it, and the same undo it. Where
+    /// deal.II gathers every value (vgatherdpd, slow on AMD) or stores lane
+    /// by lane. (Registers by value: an array of them went through the stack
+    /// in halves, a failed store forwarding per batch.)
+    DEAL_II_ALWAYS_INLINE inline void
+    batches_to_values(const __m256d b0, const __m256d b1, __m256d &x0, __m256d &x1)
+    {
+      const __m256d lo = _mm256_permute2f128_pd(b0, b1, 0x20), // a0 b0 a2 b2
+        hi             = _mm256_permute2f128_pd(b0, b1, 0x31); // a1 b1 a3 b3
+      x0               = _mm256_unpacklo_pd(lo, hi);
+      x1               = _mm256_unpackhi_pd(lo, hi);
+    }
+
+    DEAL_II_ALWAYS_INLINE inline void
+    batches_to_values(const __m256d b0, const __m256d b1, const __m256d b2, __m256d &x0,
+                      __m256d &x1, __m256d &x2)
+    {
+      // b = (a0 b0 c0 a1), (b1 c1 a2 b2), (c2 a3 b3 c3)
+      x0 = _mm256_permute4x64_pd(_mm256_blend_pd(_mm256_blend_pd(b0, b1, 0x4), b2, 0x2),
+                                 0x6C); // from a0 a3 a2 a1
+      x1 = _mm256_permute_pd(_mm256_blend_pd(_mm256_blend_pd(b1, b0, 0x2), b2, 0x4),
+                             0x5); // from b1 b0 b3 b2
+      x2 = _mm256_permute4x64_pd(_mm256_blend_pd(_mm256_blend_pd(b2, b1, 0x2), b0, 0x4),
+                                 0xC6); // from c2 c1 c0 c3
+    }
+
+    /// The inverse of batches_to_values(): batch j of the value registers.
+    DEAL_II_ALWAYS_INLINE inline __m256d
+    values_to_batch(const __m256d x0, const __m256d x1, const unsigned int j)
+    {
+      const __m256d lo = _mm256_unpacklo_pd(x0, x1), // a0 b0 a2 b2
+        hi             = _mm256_unpackhi_pd(x0, x1); // a1 b1 a3 b3
+      return j == 0 ? _mm256_permute2f128_pd(lo, hi, 0x20) : _mm256_permute2f128_pd(lo, hi, 0x31);
+    }
+
+    DEAL_II_ALWAYS_INLINE inline __m256d
+    values_to_batch(const __m256d x0, const __m256d x1, const __m256d x2, const unsigned int j)
+    {
+      const __m256d a = _mm256_permute4x64_pd(x0, 0x6C), // a0 a3 a2 a1
+        b             = _mm256_permute_pd(x1, 0x5),      // b1 b0 b3 b2
+        c             = _mm256_permute4x64_pd(x2, 0xC6); // c2 c1 c0 c3
+      return j == 0 ? _mm256_blend_pd(_mm256_blend_pd(a, b, 0x2), c, 0x4) :
+             j == 1 ? _mm256_blend_pd(_mm256_blend_pd(b, c, 0x2), a, 0x4) :
+                      _mm256_blend_pd(_mm256_blend_pd(c, a, 0x2), b, 0x4);
+    }
+#endif
   } // namespace internal
 
   /// Batch j of the values of `width` cells stored cell after cell (cell l's
@@ -252,6 +304,16 @@ namespace granular_dg
         return r;
       }
 #endif
+#if DEAL_II_VECTORIZATION_WIDTH_IN_BITS >= 256 && defined(__AVX2__)
+    else if constexpr (width == 4 && n <= 3)
+      {
+        if constexpr (n == 2)
+          r.data = internal::values_to_batch(x[0].data, x[1].data, j);
+        else
+          r.data = internal::values_to_batch(x[0].data, x[1].data, x[2].data, j);
+        return r;
+      }
+#endif
     else
       {
         for (unsigned int e = 0; e < width; ++e)
@@ -262,7 +324,7 @@ namespace granular_dg
 
   /// out[l n + k] = x[k][l]: the n values of `width` cells stored cell after
   /// cell (deal.II's vectorized_transpose_and_store() for consecutive cells),
-  /// on AVX-512 batch by batch from cell_major_batch().
+  /// on AVX-512 (and AVX2 for n <= 3) batch by batch from cell_major_batch().
   template <unsigned int n, std::size_t width>
   DEAL_II_ALWAYS_INLINE inline void
   store_cell_major(const dealii::VectorizedArray<double, width> (&x)[n], double *out)
@@ -274,6 +336,11 @@ namespace granular_dg
       for (unsigned int j = 0; j < n; ++j)
         cell_major_batch(x, j).store(out + 8 * j);
 #endif
+#if DEAL_II_VECTORIZATION_WIDTH_IN_BITS >= 256 && defined(__AVX2__)
+    else if constexpr (width == 4 && n <= 3)
+      for (unsigned int j = 0; j < n; ++j)
+        cell_major_batch(x, j).store(out + 4 * j);
+#endif
     else
       {
         unsigned int offsets[width];
@@ -283,15 +350,17 @@ namespace granular_dg
       }
   }
 
-  /// f(j, cell_major_batch(x, j)) for j = 0 .. n - 1; without AVX-512
-  /// through store_cell_major() into a local array (deal.II's shuffles beat
-  /// a lane-by-lane assembly there).
+  /// f(j, cell_major_batch(x, j)) for j = 0 .. n - 1; elsewhere than AVX-512
+  /// and AVX2 with n <= 3 through store_cell_major() into a local array
+  /// (deal.II's shuffles beat a lane-by-lane assembly there).
   template <unsigned int n, std::size_t width, typename F>
   DEAL_II_ALWAYS_INLINE inline void
   for_cell_major_batches(const dealii::VectorizedArray<double, width> (&x)[n], const F &f)
   {
 #if DEAL_II_VECTORIZATION_WIDTH_IN_BITS >= 512 && defined(__AVX512F__)
     if constexpr (n == 1 || width == 8)
+#elif DEAL_II_VECTORIZATION_WIDTH_IN_BITS >= 256 && defined(__AVX2__)
+    if constexpr (n == 1 || (width == 4 && n <= 3))
 #else
     if constexpr (n == 1)
 #endif
@@ -312,9 +381,10 @@ namespace granular_dg
 
   /// The inverse of cell_major_batch(): x[k][l] = in[l n + k], the n values
   /// of `width` cells stored cell after cell (deal.II's
-  /// vectorized_load_and_transpose() for consecutive cells). On AVX-512 with
-  /// n = 2, 3, where deal.II gathers every value, n contiguous loads and
-  /// masked lane permutes (from n = 4 on its shuffles are faster).
+  /// vectorized_load_and_transpose() for consecutive cells). With n = 2, 3,
+  /// where deal.II gathers every value, n contiguous loads and lane permutes:
+  /// masked on AVX-512, blends on AVX2 (from n = 4 on its shuffles are
+  /// faster).
   template <unsigned int n, std::size_t width>
   DEAL_II_ALWAYS_INLINE inline void
   load_cell_major(const double *in, dealii::VectorizedArray<double, width> (&x)[n])
@@ -330,6 +400,17 @@ namespace granular_dg
           batch[j] = _mm512_loadu_pd(in + 8 * j);
         for (unsigned int k = 0; k < n; ++k)
           x[k].data = internal::permute_lanes(tables.value[k], [&](const unsigned int j) { return batch[j]; });
+      }
+#endif
+#if DEAL_II_VECTORIZATION_WIDTH_IN_BITS >= 256 && defined(__AVX2__)
+    else if constexpr (width == 4 && n <= 3)
+      {
+        if constexpr (n == 2)
+          internal::batches_to_values(_mm256_loadu_pd(in), _mm256_loadu_pd(in + 4), x[0].data,
+                                      x[1].data);
+        else
+          internal::batches_to_values(_mm256_loadu_pd(in), _mm256_loadu_pd(in + 4),
+                                      _mm256_loadu_pd(in + 8), x[0].data, x[1].data, x[2].data);
       }
 #endif
     else
