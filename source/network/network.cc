@@ -62,40 +62,57 @@ namespace granular_dg::network
     }
 #elif defined(__AVX__)
 #  define GRANULAR_DG_CONTIGUOUS_EDGE_SUMS
+    /// pairwise_sum() of the lanes of lo (x[0..3]) and hi (x[4..7]), for two
+    /// such pairs at once: the same additions, in registers
+    __m128d
+    pairwise_sums(const __m256d sum_lo, const __m256d sum_hi, const __m256d tv_lo, const __m256d tv_hi)
+    {
+      // hadd: (x0 + x1, x4 + x5, x2 + x3, x6 + x7); halves added: the two
+      // quarters of pairwise_sum(), which the last hadd adds
+      const __m256d s = _mm256_hadd_pd(sum_lo, sum_hi), t = _mm256_hadd_pd(tv_lo, tv_hi);
+      return _mm_hadd_pd(_mm_add_pd(_mm256_castpd256_pd128(s), _mm256_extractf128_pd(s, 1)),
+                         _mm_add_pd(_mm256_castpd256_pd128(t), _mm256_extractf128_pd(t, 1)));
+    }
+
     /// edge_sums() below at stride 1 (degree 0), the partial sums in the
     /// lanes of two registers each (lanes 0-3 and 4-7): the same additions
-    /// in the same order, so the same result to the bit. Masked loads end
-    /// the edge; the lanes past it keep their sums (blend).
+    /// in the same order, so the same result to the bit. The blocks of 8
+    /// whose cells and jumps all lie on the edge first, then the last with
+    /// masked loads (the lanes past the edge keep their sums: blend).
     std::array<double, 2>
     contiguous_edge_sums(const double *mean, const unsigned int n)
     {
+      const __m256d sign   = _mm256_set1_pd(-0.);
+      __m256d       sum[2] = {_mm256_setzero_pd(), _mm256_setzero_pd()};
+      __m256d       tv[2]  = {_mm256_setzero_pd(), _mm256_setzero_pd()};
+      unsigned int  c      = 0;
+      for (; c + 8 < n; c += 8)
+        for (unsigned int h = 0; h < 2; ++h)
+          {
+            const __m256d x = _mm256_loadu_pd(mean + c + 4 * h), next = _mm256_loadu_pd(mean + c + 4 * h + 1);
+            sum[h] = _mm256_add_pd(sum[h], x);
+            tv[h]  = _mm256_add_pd(tv[h], _mm256_andnot_pd(sign, _mm256_sub_pd(next, x)));
+          }
       // the first k of the 8 lanes, half h: lanes 4 h .. 4 h + 3
       static const long long ones[16] = {-1, -1, -1, -1, -1, -1, -1, -1};
       const auto             first    = [](const unsigned int k, const unsigned int h) {
         return _mm256_loadu_si256(
           reinterpret_cast<const __m256i *>(ones + 8 - std::min(k, 8u) + 4 * h));
       };
-      const __m256d sign = _mm256_set1_pd(-0.);
-      __m256d       sum[2] = {_mm256_setzero_pd(), _mm256_setzero_pd()};
-      __m256d       tv[2]  = {_mm256_setzero_pd(), _mm256_setzero_pd()};
-      for (unsigned int c = 0; c < n; c += 8)
-        for (unsigned int h = 0; h < 2; ++h)
-          {
-            // lane l: cell c + 4 h + l and the jump from it to the next
-            const __m256i cells = first(n - c, h), jumps = first(n - c - 1, h);
-            const __m256d x     = _mm256_maskload_pd(mean + c + 4 * h, cells);
-            const __m256d next  = _mm256_maskload_pd(mean + c + 4 * h + 1, jumps);
-            sum[h] = _mm256_blendv_pd(sum[h], _mm256_add_pd(sum[h], x), _mm256_castsi256_pd(cells));
-            tv[h]  = _mm256_blendv_pd(tv[h],
-                                     _mm256_add_pd(tv[h], _mm256_andnot_pd(sign, _mm256_sub_pd(next, x))),
-                                     _mm256_castsi256_pd(jumps));
-          }
-      double s[8], t[8];
-      _mm256_storeu_pd(s, sum[0]);
-      _mm256_storeu_pd(s + 4, sum[1]);
-      _mm256_storeu_pd(t, tv[0]);
-      _mm256_storeu_pd(t + 4, tv[1]);
-      return {{pairwise_sum(s), pairwise_sum(t)}};
+      for (unsigned int h = 0; c < n && h < 2; ++h)
+        {
+          // lane l: cell c + 4 h + l and the jump from it to the next
+          const __m256i cells = first(n - c, h), jumps = first(n - c - 1, h);
+          const __m256d x     = _mm256_maskload_pd(mean + c + 4 * h, cells);
+          const __m256d next  = _mm256_maskload_pd(mean + c + 4 * h + 1, jumps);
+          sum[h] = _mm256_blendv_pd(sum[h], _mm256_add_pd(sum[h], x), _mm256_castsi256_pd(cells));
+          tv[h]  = _mm256_blendv_pd(tv[h],
+                                   _mm256_add_pd(tv[h], _mm256_andnot_pd(sign, _mm256_sub_pd(next, x))),
+                                   _mm256_castsi256_pd(jumps));
+        }
+      double result[2];
+      _mm_storeu_pd(result, pairwise_sums(sum[0], sum[1], tv[0], tv[1]));
+      return {{result[0], result[1]}};
     }
 #endif
   } // namespace

@@ -57,7 +57,7 @@ namespace
             double ext = f.value(a);
             for (const double s : grid(std::min(a, b), std::max(a, b), 2000))
               ext = a <= b ? std::min(ext, f.value(s)) : std::max(ext, f.value(s));
-            for (const double c : {0., 0.5 * f.alpha}) // where the extremum may be
+            for (const double c : {0., 0.5 * f.alpha()}) // where the extremum may be
               if (c >= std::min(a, b) && c <= std::max(a, b))
                 ext = a <= b ? std::min(ext, f.value(c)) : std::max(ext, f.value(c));
             godunov = std::max(godunov, std::abs(f.godunov(a, b) - ext));
@@ -65,8 +65,8 @@ namespace
             // linear f' on the pieces between the kinks of max(f', 0))
             auto integral = [&](const double to, const bool positive) {
               std::vector<double> pts{0., to};
-              const double        c = 0.5 * f.alpha;
-              if (f.law == FluxLaw::traffic && c > std::min(0., to) && c < std::max(0., to))
+              const double        c = 0.5 * f.alpha();
+              if (f.law() == FluxLaw::traffic && c > std::min(0., to) && c < std::max(0., to))
                 pts.insert(pts.begin() + 1, c);
               double sum = 0;
               for (unsigned int p = 0; p + 1 < pts.size(); ++p)

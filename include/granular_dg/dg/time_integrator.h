@@ -322,7 +322,8 @@ namespace granular_dg::dg
   };
 
   /// The forward Euler step u = u + dt L(t, u) (one stage, in place), with
-  /// the post-stage hook after it.
+  /// the post-stage hook after it. With a spare vector (as SSPRK3's) the new
+  /// state goes to *spare and u keeps the old one (the caller swaps).
   template <typename Vector = VectorType>
   class ForwardEuler
   {
@@ -332,10 +333,11 @@ namespace granular_dg::dg
     template <typename Operator>
     void
     step(const Operator &op, Vector &u, const double t, const double dt,
-         const PostStageHook &post_stage)
+         const PostStageHook &post_stage, Vector *spare = nullptr)
     {
-      op.apply_stage(t, u, u, StageUpdate<Vector>{nullptr, 1., 0., dt});
-      post_stage(u, t + dt, dt);
+      Vector &out = spare ? *spare : u;
+      op.apply_stage(t, u, out, StageUpdate<Vector>{nullptr, 1., 0., dt});
+      post_stage(out, t + dt, dt);
     }
 
     static constexpr unsigned int n_stages = 1;

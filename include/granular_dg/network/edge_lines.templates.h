@@ -387,14 +387,23 @@ namespace granular_dg::network
           }
       else
         {
-          // the largest speeds of the edges of each size, then divided
+          // the largest speeds of the edges of each size, then divided; in
+          // registers along a run of edges of one size (through memory a
+          // dependency from each edge to the next)
           std::array<VA, max_sizes>     size_lanes;
           std::array<double, max_sizes> size_rest{};
           for (auto &l : size_lanes)
             l = 0.;
-          for (unsigned int e = 0; e < n_edges(); ++e)
-            max_speed_edge<decltype(nm)::value>(u, vertex_values, e, size_lanes[size_of_edge[e]],
-                                                size_rest[size_of_edge[e]]);
+          for (unsigned int e = 0; e < n_edges();)
+            {
+              const unsigned int s = size_of_edge[e];
+              VA                 run_lanes = size_lanes[s];
+              double             run_rest  = size_rest[s];
+              for (; e < n_edges() && size_of_edge[e] == s; ++e)
+                max_speed_edge<decltype(nm)::value>(u, vertex_values, e, run_lanes, run_rest);
+              size_lanes[s] = run_lanes;
+              size_rest[s]  = run_rest;
+            }
           for (unsigned int s = 0; s < distinct_h.size(); ++s)
             {
               lanes  = std::max(lanes, size_lanes[s] / VA(distinct_h[s]));
@@ -411,10 +420,10 @@ namespace granular_dg::network
   /// cells (SIMD batches into lanes, the rest into rest) and of the vertex
   /// values at its vertex ends (into rest); the caller divides by h
   /// (division by h > 0 is monotone: the same maximum as dividing every
-  /// speed)
+  /// speed). Inlined: as a call its maxima go through memory in every batch.
   template <typename Law>
   template <unsigned int nm>
-  void
+  DEAL_II_ALWAYS_INLINE inline void
   EdgeLines<Law>::max_speed_edge(const double *src, const double *vertex_values,
                                  const unsigned int e, VA &lanes, double &rest) const
   {

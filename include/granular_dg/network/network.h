@@ -35,6 +35,12 @@ namespace granular_dg::network
     std::vector<double> vertices;
 
     void reinit(const NetworkState &other);
+    void
+    swap(NetworkState &other)
+    {
+      edges.swap(other.edges);
+      vertices.swap(other.vertices);
+    }
   };
 
   enum class Integrator
@@ -456,7 +462,10 @@ namespace granular_dg::network
     mutable std::vector<double>                      vertex_u0;
     /// the time of the far-end data in the edges' outer states
     mutable double                                   data_time = NAN;
+    /// last_good: the spare of a step, which ends by swapping it with u;
+    /// the state before the step while last_good_swapped
     NetworkState               u, last_good, benchmark_start;
+    bool                       last_good_swapped = false;
     dg::SSPRK3<NetworkState>   rk3;
     /// inflow: this rank's far ends
     double                     t = 0., inflow = 0., h_min = 0.;

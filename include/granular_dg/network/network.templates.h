@@ -756,23 +756,30 @@ namespace granular_dg::network
     stage_inflow.clear();
     if (method.degree == 0)
       bounds = range_of_step(t, dt);
+    // the new state into last_good, then swapped with u: u keeps the last
+    // good state until the step is done, without a copy (store())
     if (n_stages() == 1)
       {
-        dg::ForwardEuler<NetworkState>().step(*this, u, t, dt,
-                                              [&](NetworkState &s, double stage_time, double) {
-                                                post_stage(s, stage_time, true);
-                                              });
+        dg::ForwardEuler<NetworkState>().step(
+          *this, u, t, dt,
+          [&](NetworkState &s, double stage_time, double) { post_stage(s, stage_time, true); },
+          &last_good);
         inflow += dt * stage_inflow[0];
       }
     else
       {
         unsigned int stage = 0;
-        rk3.step(*this, u, t, dt, [&](NetworkState &s, const double stage_time, const double) {
-          post_stage(s, stage_time, ++stage == n_stages());
-        });
+        rk3.step(
+          *this, u, t, dt,
+          [&](NetworkState &s, const double stage_time, const double) {
+            post_stage(s, stage_time, ++stage == n_stages());
+          },
+          &last_good);
         // the Butcher weights of the Shu-Osher SSPRK3: 1/6, 1/6, 2/3
         inflow += dt * (stage_inflow[0] / 6. + stage_inflow[1] / 6. + 2. * stage_inflow[2] / 3.);
       }
+    u.swap(last_good);
+    last_good_swapped = true;
     t += dt;
   }
 
@@ -804,14 +811,22 @@ namespace granular_dg::network
   void
   NetworkProblem<Law>::store(const Slot slot)
   {
-    (slot == Slot::last_good ? last_good : benchmark_start) = u;
+    // (a step leaves u alone and swaps: u is the last good state)
+    if (slot == Slot::last_good)
+      last_good_swapped = false;
+    else
+      benchmark_start = u;
   }
 
   template <typename Law>
   void
   NetworkProblem<Law>::restore(const Slot slot)
   {
-    u = slot == Slot::last_good ? last_good : benchmark_start;
+    if (slot == Slot::benchmark_start)
+      u = benchmark_start;
+    else if (last_good_swapped)
+      u.swap(last_good);
+    last_good_swapped = false;
   }
 
   template <typename Law>

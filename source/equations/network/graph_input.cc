@@ -140,18 +140,12 @@ namespace granular_dg::network
     make_flux(const std::string &law, const double parameter, const std::string &where,
               const std::string &parameter_name)
     {
-      FluxFunction f;
-      f.law = flux_law_names.parse(where + "flux", law);
-      if (f.law == FluxLaw::linear)
-        f.speed = parameter;
-      if (f.law == FluxLaw::traffic)
-        {
-          f.alpha = parameter;
-          require(parameter > 0, where + parameter_name, parameter,
-                  "must be > 0 (the capacity scale of the traffic flux)");
-        }
+      const FluxLaw kind = flux_law_names.parse(where + "flux", law);
+      if (kind == FluxLaw::traffic)
+        require(parameter > 0, where + parameter_name, parameter,
+                "must be > 0 (the capacity scale of the traffic flux)");
       require(std::isfinite(parameter), where + parameter_name, parameter, "a finite number");
-      return f;
+      return {kind, kind == FluxLaw::linear ? parameter : 1., kind == FluxLaw::traffic ? parameter : 1.};
     }
 
     /// A vertex reference "free", "loop" (to only: the from vertex) or a

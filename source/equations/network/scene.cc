@@ -141,14 +141,14 @@ namespace granular_dg::network
           require(e.from == want.from, sec + "from", label(e.from), label(want.from) + why);
           require(e.to == want.to, sec + "to", label(e.to), label(want.to) + why);
           require(std::abs(e.length - 1.) <= 1e-12, sec + "length", e.length, "1" + why);
-          require(f.law == want.flux.law, sec + "flux", flux_law_names.name(f.law),
-                  flux_law_names.name(want.flux.law) + why);
-          if (want.flux.law == FluxLaw::linear)
-            require(std::abs(f.speed - want.flux.speed) < 1e-12, sec + "advection speed", f.speed,
-                    number(want.flux.speed) + why);
-          if (want.flux.law == FluxLaw::traffic)
-            require(std::abs(f.alpha - want.flux.alpha) < 1e-12, sec + "alpha", f.alpha,
-                    number(want.flux.alpha) + why);
+          require(f.law() == want.flux.law(), sec + "flux", flux_law_names.name(f.law()),
+                  flux_law_names.name(want.flux.law()) + why);
+          if (want.flux.law() == FluxLaw::linear)
+            require(std::abs(f.speed() - want.flux.speed()) < 1e-12, sec + "advection speed", f.speed(),
+                    number(want.flux.speed()) + why);
+          if (want.flux.law() == FluxLaw::traffic)
+            require(std::abs(f.alpha() - want.flux.alpha()) < 1e-12, sec + "alpha", f.alpha(),
+                    number(want.flux.alpha()) + why);
           // the initial data away from the jumps, and Dirichlet inflow data
           const auto breaks = ex.exact->breakpoints(k, 0.);
           for (unsigned int i = 0; i <= 200; ++i)

@@ -94,24 +94,34 @@ namespace granular_dg::network
                                                   {FluxLaw::traffic, "traffic"}});
 
   /// A flux law with its parameters.
-  struct FluxFunction
+  class FluxFunction
   {
-    FluxLaw law   = FluxLaw::burgers;
-    double  speed = 1.; ///< a of the linear flux
-    double  alpha = 1.; ///< capacity scaling of the traffic flux
+  public:
+    /// speed: a of the linear flux; alpha: the capacity scale of the traffic flux
+    FluxFunction(const FluxLaw law = FluxLaw::burgers, const double speed = 1., const double alpha = 1.)
+      : kind(law)
+      , advection_speed(speed)
+      , capacity(alpha)
+      , inverse_alpha(1. / alpha)
+      , eight_over_alpha(8. / alpha)
+    {}
+
+    FluxLaw law() const { return kind; }
+    double  speed() const { return advection_speed; }
+    double  alpha() const { return capacity; }
 
     template <typename Number>
     DEAL_II_ALWAYS_INLINE inline Number
     value(const Number &u) const
     {
-      switch (law)
+      switch (kind)
         {
           case FluxLaw::linear:
-            return speed * u;
+            return advection_speed * u;
           case FluxLaw::burgers:
             return 0.5 * u * u;
           default:
-            return 4. * u * (Number(1.) - u * (1. / alpha));
+            return 4. * u * (Number(1.) - u * inverse_alpha);
         }
     }
 
@@ -120,14 +130,14 @@ namespace granular_dg::network
     DEAL_II_ALWAYS_INLINE inline Number
     derivative(const Number &u) const
     {
-      switch (law)
+      switch (kind)
         {
           case FluxLaw::linear:
-            return Number(speed);
+            return Number(advection_speed);
           case FluxLaw::burgers:
             return u;
           default:
-            return Number(4.) - u * (8. / alpha);
+            return Number(4.) - u * eight_over_alpha;
         }
     }
 
@@ -136,14 +146,14 @@ namespace granular_dg::network
     DEAL_II_ALWAYS_INLINE inline Number
     increasing_part(const Number &u) const
     {
-      switch (law)
+      switch (kind)
         {
           case FluxLaw::linear:
-            return std::max(speed, 0.) * u;
+            return std::max(advection_speed, 0.) * u;
           case FluxLaw::burgers:
             return value(std::max(u, Number(0.)));
           default:
-            return value(std::min(u, Number(0.5 * alpha)));
+            return value(std::min(u, Number(0.5 * capacity)));
         }
     }
 
@@ -152,14 +162,14 @@ namespace granular_dg::network
     DEAL_II_ALWAYS_INLINE inline Number
     decreasing_part(const Number &u) const
     {
-      switch (law)
+      switch (kind)
         {
           case FluxLaw::linear:
-            return std::min(speed, 0.) * u;
+            return std::min(advection_speed, 0.) * u;
           case FluxLaw::burgers:
             return value(std::min(u, Number(0.)));
           default:
-            return value(std::max(u, Number(0.5 * alpha))) - alpha;
+            return value(std::max(u, Number(0.5 * capacity))) - capacity;
         }
     }
 
@@ -177,15 +187,15 @@ namespace granular_dg::network
     DEAL_II_ALWAYS_INLINE inline Number
     godunov(const Number &u_l, const Number &u_r) const
     {
-      switch (law)
+      switch (kind)
         {
           case FluxLaw::linear:
             return engquist_osher(u_l, u_r);
           case FluxLaw::burgers:
             return std::max(value(std::max(u_l, Number(0.))), value(std::min(u_r, Number(0.))));
           default:
-            return std::min(value(std::min(u_l, Number(0.5 * alpha))),
-                            value(std::max(u_r, Number(0.5 * alpha))));
+            return std::min(value(std::min(u_l, Number(0.5 * capacity))),
+                            value(std::max(u_r, Number(0.5 * capacity))));
         }
     }
 
@@ -218,8 +228,8 @@ namespace granular_dg::network
     std::array<double, 2>
     admissible_range() const
     {
-      if (law == FluxLaw::traffic)
-        return {{0., alpha}};
+      if (kind == FluxLaw::traffic)
+        return {{0., capacity}};
       return {{-INFINITY, INFINITY}};
     }
 
@@ -228,14 +238,22 @@ namespace granular_dg::network
     describe() const
     {
       std::ostringstream s;
-      if (law == FluxLaw::linear)
-        s << "linear f = " << speed << " u";
-      else if (law == FluxLaw::burgers)
+      if (kind == FluxLaw::linear)
+        s << "linear f = " << advection_speed << " u";
+      else if (kind == FluxLaw::burgers)
         s << "burgers f = u^2/2";
       else
-        s << "traffic f = 4 u (1 - u/" << alpha << ")";
+        s << "traffic f = 4 u (1 - u/" << capacity << ")";
       return s.str();
     }
+
+  private:
+    FluxLaw kind;
+    /// a of the linear flux, alpha of the traffic flux (the road capacity)
+    double advection_speed, capacity;
+    /// 1 / alpha and 8 / alpha, divided once: a division in the kernels'
+    /// flux is not hoisted out of their loops (it sits in a branch of the law)
+    double inverse_alpha, eight_over_alpha;
   };
 
   /// The physics of one edge for the network engine (NetworkProblem<Law>):
@@ -285,7 +303,7 @@ namespace granular_dg::network
     vertex_range(const bool incoming) const
     {
       auto r = admissible_range();
-      if (!incoming && f.law == FluxLaw::traffic && type != NumericalFlux::local_lax_friedrichs)
+      if (!incoming && f.law() == FluxLaw::traffic && type != NumericalFlux::local_lax_friedrichs)
         r[1] = INFINITY;
       return r;
     }
