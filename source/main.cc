@@ -14,11 +14,9 @@
 #include <granular_dg/version.h>
 
 #include <filesystem>
-#include <fstream>
 #include <cstdlib>
 #include <iostream>
 #include <optional>
-#include <regex>
 
 using namespace granular_dg;
 
@@ -40,35 +38,24 @@ namespace
     scene.declare(prm);
   }
 
-  /// The scene named by the top-level `set scene = NAME` of a prm file (or a
-  /// --set scene=NAME override), found before the parameters are declared,
-  /// since what is declared depends on it.
+  /// The scene named by the top-level `set scene = NAME` of a prm file (or of
+  /// a file it includes), or by a --set scene=NAME override, found before the
+  /// parameters are declared, since what is declared depends on it.
   std::string
   find_scene_name(const std::string &filename, const std::vector<std::string> &overrides)
   {
-    std::string name, override_name;
+    std::string name, override_name, where;
     for (const auto &o : overrides)
       if (o.rfind("scene=", 0) == 0)
         override_name = Utilities::trim(o.substr(6));
     require_readable_parameter_file(filename);
-    std::ifstream    in(filename);
-    const std::regex pattern(R"(^\s*set\s+scene\s*=\s*([^#\s]*)\s*(#.*)?$)");
-    const std::regex section(R"(^\s*subsection\s)"), end(R"(^\s*end\s*(#.*)?$)");
-    std::string line;
-    int         depth = 0;
-    std::smatch match;
-    while (std::getline(in, line))
+    for (const auto &[value, at] : top_level_settings(filename, "scene"))
       {
-        if (std::regex_search(line, section))
-          ++depth;
-        else if (std::regex_search(line, end))
-          --depth;
-        else if (depth == 0 && std::regex_match(line, match, pattern))
-          {
-            require(name.empty() || name == match[1].str(), "scene", match[1].str(),
-                    "one scene per file: " + filename + " sets scene = " + name + " before");
-            name = match[1];
-          }
+        if (!name.empty() && name != value) // (require()'s form, with the origin)
+          throw InputError("parameter 'scene' = '" + value + "' (" + at +
+                           ") is not allowed: one scene per case: " + where + " sets scene = " + name);
+        name  = value;
+        where = at;
       }
     if (!override_name.empty())
       {

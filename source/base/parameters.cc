@@ -9,6 +9,7 @@
 #include <fstream>
 #include <iostream>
 #include <map>
+#include <functional>
 #include <regex>
 #include <sstream>
 
@@ -289,6 +290,31 @@ namespace granular_dg
       throw InputError("parameter file '" + filename +
                        "' starts with a UTF-8 byte-order mark (the bytes EF BB BF, which some "
                        "editors add): save it as UTF-8 without a BOM");
+  }
+
+  std::vector<std::pair<std::string, std::string>>
+  top_level_settings(const std::string &filename, const std::string &name)
+  {
+    const std::regex set(R"(^\s*set\s+)" + name + R"(\s*=\s*(.*\S)?\s*$)");
+    const auto       directory = std::filesystem::path(filename).parent_path();
+    std::vector<std::pair<std::string, std::string>> found;
+    const std::function<void(const std::string &, unsigned int)> read =
+      [&](const std::string &file, const unsigned int depth) {
+        const auto  lines = lines_with_sections(file);
+        std::smatch m;
+        for (unsigned int n = 0; n < lines.size(); ++n)
+          if (!lines[n].first.empty())
+            continue;
+          else if (std::regex_match(lines[n].second, m, set))
+            found.emplace_back(m[1].str(), file + " line " + std::to_string(n + 1));
+          else if (const std::string included = included_file(lines[n].second);
+                   !included.empty() && depth < 8)
+            read(std::filesystem::path(included).is_absolute() ? included :
+                                                                 (directory / included).lexically_normal().string(),
+                 depth + 1);
+      };
+    read(filename, 0);
+    return found;
   }
 
   void

@@ -46,3 +46,11 @@ granular_dg_test(input/include_relative
   COMPARE summary.json:status,final_time NUMDIFF -a 0 -r 0)
 granular_dg_test(input/include_bad PRM input/include_bad.prm
   COPY input/include_common.prm input/include_bad_value.prm EXIT 2 KEEP_OUTPUT)
+# the scene set in an included file (nested includes: relative to the
+# parameter file), and two scenes in a file and the file it includes
+granular_dg_test(input/include_scene PRM input/include_scene.prm
+  COPY input/include_scene_common.prm input/include_common.prm
+  ARGS --set Output/directory=out
+  COMPARE summary.json:status,final_time NUMDIFF -a 0 -r 0)
+granular_dg_test(input/include_two_scenes PRM input/include_two_scenes.prm
+  COPY input/include_scene_common.prm input/include_common.prm EXIT 2 KEEP_OUTPUT)

@@ -80,6 +80,13 @@ namespace granular_dg
   void
   require_readable_parameter_file(const std::string &filename);
 
+  /// The values of the top-level entry `name` (set outside any subsection)
+  /// in a parameter file and in the files it includes at its top level, as
+  /// parse_parameters() reads them (includes relative to the file), each with
+  /// where it is set ("FILE line N"), in the order they are read.
+  std::vector<std::pair<std::string, std::string>>
+  top_level_settings(const std::string &filename, const std::string &name);
+
   /// Parse a file into prm and apply "Section/sub/name=value" overrides;
   /// deal.II's errors become one-line InputErrors.
   void
