@@ -37,7 +37,7 @@ namespace granular_dg::network
     /// edge_sums() below at stride 1 (degree 0), the partial sums in the
     /// lanes of one register each: the same additions in the same order, so
     /// the same result to the bit. Masked loads end the edge.
-    std::array<double, 2>
+    DEAL_II_ALWAYS_INLINE inline std::array<double, 2>
     contiguous_edge_sums(const double *mean, const unsigned int n)
     {
       // the first k of the 8 lanes
@@ -79,7 +79,7 @@ namespace granular_dg::network
     /// in the same order, so the same result to the bit. The blocks of 8
     /// whose cells and jumps all lie on the edge first, then the last with
     /// masked loads (the lanes past the edge keep their sums: blend).
-    std::array<double, 2>
+    DEAL_II_ALWAYS_INLINE inline std::array<double, 2>
     contiguous_edge_sums(const double *mean, const unsigned int n)
     {
       const __m256d sign   = _mm256_set1_pd(-0.);
@@ -115,6 +115,35 @@ namespace granular_dg::network
       return {{result[0], result[1]}};
     }
 #endif
+
+    /// The sum of the n cell means of an edge (at mean[c * stride]) and their
+    /// total variation, each over 8 interleaved partial sums (cell c in sum
+    /// c % 8: no long chain of dependent additions) added pairwise. Written
+    /// in blocks of 8 so that the partial sums stay in registers.
+    DEAL_II_ALWAYS_INLINE inline std::array<double, 2>
+    edge_sums(const double *mean, const unsigned int stride, const unsigned int n)
+    {
+#if (DEAL_II_VECTORIZATION_WIDTH_IN_BITS >= 512 && defined(__AVX512F__)) || \
+  defined(GRANULAR_DG_CONTIGUOUS_EDGE_SUMS)
+      if (stride == 1)
+        return contiguous_edge_sums(mean, n);
+#endif
+      constexpr unsigned int L      = 8;
+      double                 sum[L] = {}, tv[L] = {};
+      const auto             add    = [&](const unsigned int c, const unsigned int l) {
+        sum[l] += mean[c * stride];
+        if (c + 1 < n)
+          tv[l] += std::abs(mean[(c + 1) * stride] - mean[c * stride]);
+      };
+      unsigned int c = 0;
+      for (; c + L <= n; c += L)
+        for (unsigned int l = 0; l < L; ++l)
+          add(c + l, l);
+      for (unsigned int l = 0; l < L; ++l)
+        if (c + l < n)
+          add(c + l, l);
+      return {{pairwise_sum(sum), pairwise_sum(tv)}};
+    }
   } // namespace
 
   namespace internal
@@ -156,33 +185,17 @@ namespace granular_dg::network
       return result;
     }
 
-    /// The sum of the n cell means of an edge (at mean[c * stride]) and their
-    /// total variation, each over 8 interleaved partial sums (cell c in sum
-    /// c % 8: no long chain of dependent additions) added pairwise. Written
-    /// in blocks of 8 so that the partial sums stay in registers.
-    std::array<double, 2>
-    edge_sums(const double *mean, const unsigned int stride, const unsigned int n)
+    void
+    add_edge_sums(const double *u, const unsigned int stride, const std::vector<unsigned int> &cells,
+                  const std::vector<double> &h, double &m, double &tv)
     {
-#if (DEAL_II_VECTORIZATION_WIDTH_IN_BITS >= 512 && defined(__AVX512F__)) || \
-  defined(GRANULAR_DG_CONTIGUOUS_EDGE_SUMS)
-      if (stride == 1)
-        return contiguous_edge_sums(mean, n);
-#endif
-      constexpr unsigned int L      = 8;
-      double                 sum[L] = {}, tv[L] = {};
-      const auto             add    = [&](const unsigned int c, const unsigned int l) {
-        sum[l] += mean[c * stride];
-        if (c + 1 < n)
-          tv[l] += std::abs(mean[(c + 1) * stride] - mean[c * stride]);
-      };
-      unsigned int c = 0;
-      for (; c + L <= n; c += L)
-        for (unsigned int l = 0; l < L; ++l)
-          add(c + l, l);
-      for (unsigned int l = 0; l < L; ++l)
-        if (c + l < n)
-          add(c + l, l);
-      return {{pairwise_sum(sum), pairwise_sum(tv)}};
+      for (unsigned int e = 0; e < cells.size(); ++e)
+        {
+          const auto [sum, variation] = edge_sums(u, stride, cells[e]);
+          m += h[e] * sum;
+          tv += variation;
+          u += std::size_t(cells[e]) * stride;
+        }
     }
 
     template Scan scan<false>(const std::vector<double> &);

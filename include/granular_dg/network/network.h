@@ -124,10 +124,13 @@ namespace granular_dg::network
     Scan
     scan(const std::vector<double> &v);
 
-    /// the sum of the n cell means of an edge (at mean[c * stride]) and
-    /// their total variation
-    std::array<double, 2>
-    edge_sums(const double *mean, unsigned int stride, unsigned int n);
+    /// Adds to m and tv, edge after edge (EdgeLines' layout from u on, cells[e]
+    /// cells of size h[e], stride values per cell), h[e] times the sum of the
+    /// edge's cell means and their total variation along the edge. (One call
+    /// for all edges: the sums of an edge are inlined, not a call each.)
+    void
+    add_edge_sums(const double *u, unsigned int stride, const std::vector<unsigned int> &cells,
+                  const std::vector<double> &h, double &m, double &tv);
   } // namespace internal
 
   /**

@@ -853,13 +853,8 @@ namespace granular_dg::network
     for (const unsigned int v : ranks->vertices())
       if (ranks->reports_vertex(v))
         m += junctions[v].width() * u.vertices[v];
-    for (const unsigned int k : ranks->edges())
-      {
-        const auto [sum, variation] =
-          internal::edge_sums(u.edges.data() + lines->index(local(k), 0), lines->n_modes(), edge_cells[k]);
-        m += edge_h[k] * sum;
-        tv += variation;
-      }
+    internal::add_edge_sums(u.edges.data(), lines->n_modes(), lines->cell_counts(),
+                            lines->cell_sizes(), m, tv);
     for (const auto &end : owned_ends)
       tv += std::abs(u.vertices[end.vertex] - u.edges[end.cell]);
     return {{m, tv}};
