@@ -7,9 +7,9 @@
 
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <iostream>
 #include <map>
-#include <functional>
 #include <regex>
 #include <sstream>
 
