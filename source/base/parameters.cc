@@ -179,33 +179,54 @@ namespace granular_dg
       return line >= 1 && line <= lines.size() ? lines[line - 1].first : "";
     }
 
-    /// set_parameter_origin() for every entry the file sets: "FILE line N",
-    /// and those of the files it includes (relative to the parameter file,
-    /// in the section where the include line stands); a warning (rank 0)
-    /// for an entry set twice in one file, whose last value counts.
+    /// f(file, line, path, text) for every line of a prm file (line: 1-based,
+    /// path: the "Section/Sub/" in force) and, in place of each `include`
+    /// line, for the lines of the file it names, as parse_parameters() reads
+    /// them: relative to the top file's directory, in the section where the
+    /// include line stands (nested includes too, up to 8 deep).
+    template <typename F>
     void
-    record_parameter_origins(const std::string &filename, const std::string &prefix = "",
-                             const unsigned int depth = 0)
+    for_each_line(const std::string &filename, const F &f)
+    {
+      const auto directory = std::filesystem::path(filename).parent_path();
+      const std::function<void(const std::string &, const std::string &, unsigned int)> read =
+        [&](const std::string &file, const std::string &prefix, const unsigned int depth) {
+          const auto lines = lines_with_sections(file, prefix);
+          for (unsigned int n = 0; n < lines.size(); ++n)
+            if (const std::string included = included_file(lines[n].second); included.empty())
+              f(file, n + 1, lines[n].first, lines[n].second);
+            else if (depth < 8)
+              read(std::filesystem::path(included).is_absolute() ?
+                     included :
+                     (directory / included).lexically_normal().string(),
+                   lines[n].first, depth + 1);
+        };
+      read(filename, "", 0);
+    }
+
+    /// set_parameter_origin() for every entry the file and the files it
+    /// includes set: "FILE line N"; a warning (rank 0) for an entry set twice
+    /// in one file, whose last value counts.
+    void
+    record_parameter_origins(const std::string &filename)
     {
       const std::regex set(R"(^\s*set\s+(.*\S)\s*=.*$)");
       std::smatch      m;
-      const auto       lines = lines_with_sections(filename, prefix);
-      std::map<std::string, unsigned int> first;
+      // (file, entry): the line that sets it first
+      std::map<std::pair<std::string, std::string>, unsigned int> first;
       const bool root = !Utilities::MPI::job_supports_mpi() ||
                         Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) == 0;
-      for (unsigned int n = 0; n < lines.size(); ++n)
-        if (std::regex_match(lines[n].second, m, set))
-          {
-            const std::string name = lines[n].first + m[1].str();
-            if (const auto [at, fresh] = first.emplace(name, n + 1); !fresh && root)
-              std::cerr << "granular_dg: warning: '" << name << "' is set twice in " << filename
-                        << " (lines " << at->second << " and " << n + 1
-                        << "): the last value counts" << std::endl;
-            set_parameter_origin(name, filename + " line " + std::to_string(n + 1));
-          }
-        else if (const std::string file = included_file(lines[n].second);
-                 !file.empty() && depth < 8)
-          record_parameter_origins(resolve_input_path(file), lines[n].first, depth + 1);
+      for_each_line(filename, [&](const std::string &file, const unsigned int line,
+                                  const std::string &path, const std::string &text) {
+        if (!std::regex_match(text, m, set))
+          return;
+        const std::string name = path + m[1].str();
+        if (const auto [at, fresh] = first.emplace(std::make_pair(file, name), line); !fresh && root)
+          std::cerr << "granular_dg: warning: '" << name << "' is set twice in " << file
+                    << " (lines " << at->second << " and " << line << "): the last value counts"
+                    << std::endl;
+        set_parameter_origin(name, file + " line " + std::to_string(line));
+      });
     }
 
     /// Turns ParameterHandler's messages into our one-line form naming the
@@ -296,24 +317,13 @@ namespace granular_dg
   top_level_settings(const std::string &filename, const std::string &name)
   {
     const std::regex set(R"(^\s*set\s+)" + name + R"(\s*=\s*(.*\S)?\s*$)");
-    const auto       directory = std::filesystem::path(filename).parent_path();
+    std::smatch      m;
     std::vector<std::pair<std::string, std::string>> found;
-    const std::function<void(const std::string &, unsigned int)> read =
-      [&](const std::string &file, const unsigned int depth) {
-        const auto  lines = lines_with_sections(file);
-        std::smatch m;
-        for (unsigned int n = 0; n < lines.size(); ++n)
-          if (!lines[n].first.empty())
-            continue;
-          else if (std::regex_match(lines[n].second, m, set))
-            found.emplace_back(m[1].str(), file + " line " + std::to_string(n + 1));
-          else if (const std::string included = included_file(lines[n].second);
-                   !included.empty() && depth < 8)
-            read(std::filesystem::path(included).is_absolute() ? included :
-                                                                 (directory / included).lexically_normal().string(),
-                 depth + 1);
-      };
-    read(filename, 0);
+    for_each_line(filename, [&](const std::string &file, const unsigned int line,
+                                const std::string &path, const std::string &text) {
+      if (path.empty() && std::regex_match(text, m, set))
+        found.emplace_back(m[1].str(), file + " line " + std::to_string(line));
+    });
     return found;
   }
 
