@@ -13,6 +13,16 @@
 
 namespace granular_dg::network
 {
+  /// body(law). A Law may overload it (found by argument-dependent lookup)
+  /// to call body with an equivalent law whose branches are resolved at
+  /// compile time (system.h: EdgeLaw); EdgeLines' operator calls it per edge.
+  template <typename Law, typename Body>
+  DEAL_II_ALWAYS_INLINE inline void
+  with_fixed_law(const Law &law, Body &&body)
+  {
+    body(law);
+  }
+
   /// Where the outer state of an edge end comes from.
   enum class EndKind : unsigned char
   {
@@ -132,16 +142,18 @@ namespace granular_dg::network
     /// res += the volume term of a cell's rate, sum_q w_q f(u(x_q)) L_k'(x_q):
     /// of one cell (Number = double) or of a SIMD batch of cells (VA); inlined
     /// into the kernels (a call costs the degree-2 operator 15 %)
-    template <unsigned int nm, typename Number>
-    void add_volume_term(const Number *u, const Law &law, Number (&res)[nm]) const;
-    template <unsigned int nm, typename Out>
-    void rate_edge(const double *src, unsigned int e, const Out &out) const;
-    template <unsigned int nm, typename Out>
+    template <unsigned int nm, typename Number, typename FixedLaw>
+    void add_volume_term(const Number *u, const FixedLaw &law, Number (&res)[nm]) const;
+    /// the rate of edge e with its law (with_fixed_law(): laws[e] or a copy
+    /// fixed at compile time)
+    template <unsigned int nm, typename FixedLaw, typename Out>
+    void rate_edge(const double *src, unsigned int e, const FixedLaw &law, const Out &out) const;
+    template <unsigned int nm, typename FixedLaw, typename Out>
     void rate_batch(const double *src, unsigned int e, unsigned int c, const double *next,
-                    const Law &law, double &F_left, const Out &out) const;
+                    const FixedLaw &law, double &F_left, const Out &out) const;
     const double *last_cells(const double *src, unsigned int e, unsigned int c) const;
-    template <unsigned int nm>
-    void subcell_rate(const double *u, unsigned int e, const Law &law, double F_left,
+    template <unsigned int nm, typename FixedLaw>
+    void subcell_rate(const double *u, unsigned int e, const FixedLaw &law, double F_left,
                       double F_right, double (&fv)[nm]) const;
     template <unsigned int nm>
     void raw_blending_factors(const double *src, unsigned int e) const;

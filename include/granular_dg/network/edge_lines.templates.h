@@ -133,10 +133,14 @@ namespace granular_dg::network
       // the branch on old outside the cell loops
       if (old)
         for (unsigned int e = 0; e < n_edges(); ++e)
-          rate_edge<n>(src, e, dg::StageWriter<true>{src, old, dst, a, b, gamma});
+          with_fixed_law(laws[e], [&](const auto &law) {
+            rate_edge<n>(src, e, law, dg::StageWriter<true>{src, old, dst, a, b, gamma});
+          });
       else
         for (unsigned int e = 0; e < n_edges(); ++e)
-          rate_edge<n>(src, e, dg::StageWriter<false>{src, old, dst, a, b, gamma});
+          with_fixed_law(laws[e], [&](const auto &law) {
+            rate_edge<n>(src, e, law, dg::StageWriter<false>{src, old, dst, a, b, gamma});
+          });
     });
   }
 
@@ -145,9 +149,9 @@ namespace granular_dg::network
   /// values of a SIMD batch), a cell's entries after all reads of it and of
   /// its left neighbour (out may overwrite src).
   template <typename Law>
-  template <unsigned int nm, typename Number>
+  template <unsigned int nm, typename Number, typename FixedLaw>
   DEAL_II_ALWAYS_INLINE inline void
-  EdgeLines<Law>::add_volume_term(const Number *u, const Law &law, Number (&res)[nm]) const
+  EdgeLines<Law>::add_volume_term(const Number *u, const FixedLaw &law, Number (&res)[nm]) const
   {
     // (degree 0: L_0' = 0, the volume term is 0)
     for (unsigned int q = 0; nm > 1 && q < nm + 1; ++q)
@@ -160,9 +164,10 @@ namespace granular_dg::network
   }
 
   template <typename Law>
-  template <unsigned int nm, typename Out>
+  template <unsigned int nm, typename FixedLaw, typename Out>
   void
-  EdgeLines<Law>::rate_edge(const double *src, const unsigned int e, const Out &out) const
+  EdgeLines<Law>::rate_edge(const double *src, const unsigned int e, const FixedLaw &law,
+                            const Out &out) const
   {
     const unsigned int n        = cells[e];
     const bool         blending = blend.enabled();
@@ -177,9 +182,7 @@ namespace granular_dg::network
           s1 += x[k] * at_1[k];
         }
     };
-    // a local copy: the compiler need not reload it after every store
-    const Law law = laws[e];
-    double    U0, U1;
+    double U0, U1;
     traces(0, U0, U1);
     // the flux through the left face of cell c, kept from one cell to the next
     // (the edge's start: a scalar flux; in the first batch's lane 0 it would
@@ -260,10 +263,10 @@ namespace granular_dg::network
   /// the last lane). Inlined into
   /// rate_edge(): as a call it costs the operator about 10 % at degrees 0 and 2.
   template <typename Law>
-  template <unsigned int nm, typename Out>
+  template <unsigned int nm, typename FixedLaw, typename Out>
   DEAL_II_ALWAYS_INLINE inline void
   EdgeLines<Law>::rate_batch(const double *src, const unsigned int e, const unsigned int c,
-                             const double *next, const Law &law, double &F_left,
+                             const double *next, const FixedLaw &law, double &F_left,
                              const Out &out) const
   {
     VA u[nm], v[nm];
@@ -295,9 +298,9 @@ namespace granular_dg::network
   /// dg::LineOperator::subcell_rate(): the first-order finite-volume rate
   /// of the p + 1 subcells of a cell of edge e (modes u) as Legendre modes.
   template <typename Law>
-  template <unsigned int nm>
+  template <unsigned int nm, typename FixedLaw>
   void
-  EdgeLines<Law>::subcell_rate(const double *u, const unsigned int e, const Law &law,
+  EdgeLines<Law>::subcell_rate(const double *u, const unsigned int e, const FixedLaw &law,
                                const double F_left, const double F_right, double (&fv)[nm]) const
   {
     double mean[nm];
