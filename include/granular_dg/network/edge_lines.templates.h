@@ -423,37 +423,40 @@ namespace granular_dg::network
   /// cells (SIMD batches into lanes, the rest into rest) and of the vertex
   /// values at its vertex ends (into rest); the caller divides by h
   /// (division by h > 0 is monotone: the same maximum as dividing every
-  /// speed). Inlined: as a call its maxima go through memory in every batch.
+  /// speed). With the law fixed at compile time (with_fixed_law()): no
+  /// branch on it at every point. Inlined: as a call its maxima go through
+  /// memory in every batch.
   template <typename Law>
   template <unsigned int nm>
   DEAL_II_ALWAYS_INLINE inline void
   EdgeLines<Law>::max_speed_edge(const double *src, const double *vertex_values,
                                  const unsigned int e, VA &lanes, double &rest) const
   {
-    const Law          f          = laws[e];
-    const auto         cell_speed = [&](const auto *u) {
-      using Number    = std::remove_cv_t<std::remove_pointer_t<decltype(u)>>;
-      // (degree 0: every point has the cell's value)
-      Number cell_max = 0.;
-      for (unsigned int q = 0; q < (nm > 1 ? nm + 1 : 1); ++q)
-        cell_max = std::max(cell_max, std::max(std::abs(f.derivative(
-                                                 internal::point_state<nm>(u, basis[q]))),
-                                               Number(0.)));
-      return cell_max;
-    };
-    unsigned int c = 0;
-    if (W > 1 && cells[e] >= W)
-      for (; c + W <= cells[e]; c += W)
-        {
-          VA u[nm];
-          load_cell_major<nm>(src + index(e, c), u);
-          lanes = std::max(lanes, cell_speed(u));
-        }
-    for (; c < cells[e]; ++c)
-      rest = std::max(rest, cell_speed(src + index(e, c)));
-    for (const unsigned int side : {0u, 1u})
-      if (end_kind[2 * e + side] == EndKind::vertex)
-        rest = std::max(rest, std::abs(f.derivative(vertex_values[2 * e + side])));
+    with_fixed_law(laws[e], [&](const auto &f) {
+      const auto cell_speed = [&](const auto *u) {
+        using Number    = std::remove_cv_t<std::remove_pointer_t<decltype(u)>>;
+        // (degree 0: every point has the cell's value)
+        Number cell_max = 0.;
+        for (unsigned int q = 0; q < (nm > 1 ? nm + 1 : 1); ++q)
+          cell_max = std::max(cell_max, std::max(std::abs(f.derivative(
+                                                   internal::point_state<nm>(u, basis[q]))),
+                                                 Number(0.)));
+        return cell_max;
+      };
+      unsigned int c = 0;
+      if (W > 1 && cells[e] >= W)
+        for (; c + W <= cells[e]; c += W)
+          {
+            VA u[nm];
+            load_cell_major<nm>(src + index(e, c), u);
+            lanes = std::max(lanes, cell_speed(u));
+          }
+      for (; c < cells[e]; ++c)
+        rest = std::max(rest, cell_speed(src + index(e, c)));
+      for (const unsigned int side : {0u, 1u})
+        if (end_kind[2 * e + side] == EndKind::vertex)
+          rest = std::max(rest, std::abs(f.derivative(vertex_values[2 * e + side])));
+    });
   }
 
   // ---------------------------------------------------------------- the limiter
