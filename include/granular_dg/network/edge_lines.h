@@ -9,6 +9,7 @@
 
 #include <array>
 #include <cstddef>
+#include <type_traits>
 #include <vector>
 
 namespace granular_dg::network
@@ -144,7 +145,7 @@ namespace granular_dg::network
     /// into the kernels (a call costs the degree-2 operator 15 %)
     template <unsigned int nm, typename Number, typename FixedLaw>
     void add_volume_term(const Number *u, const FixedLaw &law, Number (&res)[nm]) const;
-    /// the rate of edge e with its law (with_fixed_law(): laws[e] or a copy
+    /// the rate of edge e with its law (with_fixed_law(): edge_law(e) or a copy
     /// fixed at compile time)
     template <unsigned int nm, typename FixedLaw, typename Out>
     void rate_edge(const double *src, unsigned int e, const FixedLaw &law, const Out &out) const;
@@ -175,7 +176,13 @@ namespace granular_dg::network
     double outer_of(unsigned int e, unsigned int side, double inner) const;
 
     EdgeMethod                method;
-    std::vector<Law>          laws;
+    /// the distinct laws (as far as Law has ==) and the one of each edge: a
+    /// table that stays in the cache and an index per edge, not a copy per
+    /// edge (on the city grid one law for 10224 edges)
+    static constexpr unsigned int max_laws = 16;
+    std::vector<Law>              distinct_laws;
+    std::vector<unsigned int>     law_of_edge;
+    const Law &edge_law(const unsigned int e) const { return distinct_laws[law_of_edge[e]]; }
     std::vector<unsigned int> cells;
     /// first[e]: the cells before edge e (first[n_edges]: all)
     std::vector<std::size_t>  first;

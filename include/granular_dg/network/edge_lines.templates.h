@@ -21,6 +21,15 @@ namespace granular_dg::network
 {
   namespace internal
   {
+    /// whether T has ==
+    template <typename T, typename = void>
+    struct equality_comparable : std::false_type
+    {};
+    template <typename T>
+    struct equality_comparable<T, std::void_t<decltype(std::declval<const T &>() == std::declval<const T &>())>>
+      : std::true_type
+    {};
+
     /// the state at Gauss point q of a cell with modes u (double or a batch)
     template <unsigned int nm, typename Number, typename Basis>
     DEAL_II_ALWAYS_INLINE inline Number
@@ -37,7 +46,6 @@ namespace granular_dg::network
   EdgeLines<Law>::EdgeLines(const EdgeMethod &m, std::vector<Law> flux,
                             const std::vector<unsigned int> &n_cells, const std::vector<double> &sizes)
     : method(m)
-    , laws(std::move(flux))
     , cells(n_cells)
     , h(sizes)
     , end_kind(2 * n_cells.size(), EndKind::outflow)
@@ -46,6 +54,20 @@ namespace granular_dg::network
     , modes(m.degree + 1)
   {
     AssertThrow(modes <= max_modes, ExcMessage("the network's edges support degrees 0-4"));
+    // the table of distinct laws: an edge's law is looked for among the
+    // first max_laws, beyond them only in the last (runs of equal laws)
+    for (const Law &l : flux)
+      {
+        unsigned int i = distinct_laws.size();
+        if constexpr (internal::equality_comparable<Law>::value)
+          {
+            const unsigned int from = i > max_laws ? i - 1 : 0;
+            i = std::find(distinct_laws.begin() + from, distinct_laws.end(), l) - distinct_laws.begin();
+          }
+        if (i == distinct_laws.size())
+          distinct_laws.push_back(l);
+        law_of_edge.push_back(i);
+      }
     first.assign(1, 0);
     for (const unsigned int n : cells)
       first.push_back(first.back() + n);
@@ -133,12 +155,12 @@ namespace granular_dg::network
       // the branch on old outside the cell loops
       if (old)
         for (unsigned int e = 0; e < n_edges(); ++e)
-          with_fixed_law(laws[e], [&](const auto &law) {
+          with_fixed_law(edge_law(e), [&](const auto &law) {
             rate_edge<n>(src, e, law, dg::StageWriter<true>{src, old, dst, a, b, gamma});
           });
       else
         for (unsigned int e = 0; e < n_edges(); ++e)
-          with_fixed_law(laws[e], [&](const auto &law) {
+          with_fixed_law(edge_law(e), [&](const auto &law) {
             rate_edge<n>(src, e, law, dg::StageWriter<false>{src, old, dst, a, b, gamma});
           });
     });
@@ -432,7 +454,7 @@ namespace granular_dg::network
   EdgeLines<Law>::max_speed_edge(const double *src, const double *vertex_values,
                                  const unsigned int e, VA &lanes, double &rest) const
   {
-    with_fixed_law(laws[e], [&](const auto &f) {
+    with_fixed_law(edge_law(e), [&](const auto &f) {
       const auto cell_speed = [&](const auto *u) {
         using Number    = std::remove_cv_t<std::remove_pointer_t<decltype(u)>>;
         // (degree 0: every point has the cell's value)

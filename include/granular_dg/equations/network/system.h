@@ -145,6 +145,16 @@ namespace granular_dg::network
     }
 
     FluxLaw law() const { return FluxLaw(kind); }
+    /// the same law with the same parameters (-0 is not 0: a speed's sign
+    /// enters the fluxes)
+    bool
+    operator==(const BasicFluxFunction &g) const
+    {
+      const auto same = [](const double a, const double b) {
+        return a == b && std::signbit(a) == std::signbit(b);
+      };
+      return law() == g.law() && same(advection_speed, g.advection_speed) && same(capacity, g.capacity);
+    }
     double  speed() const { return advection_speed; }
     double  alpha() const { return capacity; }
 
@@ -317,6 +327,12 @@ namespace granular_dg::network
     NumericalFlux           type = NumericalFlux::upwind;
 
     static constexpr const char *name = "scalar conservation law";
+
+    bool
+    operator==(const BasicEdgeLaw &l) const
+    {
+      return f == l.f && type == l.type;
+    }
 
     template <typename Number>
     DEAL_II_ALWAYS_INLINE inline Number
