@@ -254,7 +254,7 @@ namespace granular_dg::network
       const Number lambda =
         std::max(std::abs(derivative(u_l)), std::abs(derivative(u_r)));
       return 0.5 * (internal::unfused(value(u_l)) + internal::unfused(value(u_r))) -
-             (0.5 * lambda) * (u_r - u_l);
+             internal::unfused((0.5 * lambda) * (u_r - u_l));
     }
 
     /// The numerical flux F(u_l, u_r) in the direction of the edge.
