@@ -149,7 +149,8 @@ namespace granular_dg::network
    * the flux at a vertex end of it is physical (both checked after every
    * stage), describe() for
    * messages and output headers, flux_name() for summary.json and a static
-   * `name` (tests/network/custom_law.cc has a minimal one). It may overload
+   * `name` (tests/network/custom_law.cc has a minimal one). It may have ==
+   * (the line operator then keeps one copy of equal laws) and overload
    * with_fixed_law() (edge_lines.h) to hand the line operator a copy of
    * itself with its branches resolved at compile time. The members are
    * defined in network.templates.h and output.templates.h, which the scene
