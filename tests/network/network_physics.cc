@@ -7,7 +7,8 @@
 //    Osher against f(c) + int_c^u max(f', 0) + int_c^v min(f', 0) by
 //    quadrature, and EO = upwind f(u_l) on increasing branches;
 //  - EdgeLaw (the law as the network engine evaluates it) in the lanes of a
-//    SIMD batch equal to its scalar values, bit for bit;
+//    SIMD batch equal to its scalar values, bit for bit, and the law fixed
+//    at compile time (with_fixed_law()) equal to it, bit for bit;
 //  - the discrete stationary vertex values of Examples 7.1, 7.2, 7.4
 //    (c_0 = 1, (3 - sqrt 7)/2, sqrt(2/3)) from Junction::balance, and the
 //    error when the outgoing edges cannot carry the incoming flux.
@@ -142,6 +143,44 @@ main()
                           std::abs(v[l] - law.value(ur[l]))});
         }
     std::cout << "EdgeLaw in SIMD lanes - scalar: " << d << std::endl;
+  }
+
+  // the law fixed at compile time (with_fixed_law(): the engine's kernels)
+  // rounds as the law that branches on its kind at run time: the same bits,
+  // in scalar code and in the lanes of a SIMD batch
+  {
+    using VA        = VectorizedArray<double>;
+    const auto same = [](const double x, const double y) {
+      return x == y && std::signbit(x) == std::signbit(y);
+    };
+    bool equal = true;
+    for (const FluxFunction f : {FluxFunction{FluxLaw::linear, -0.5, 1.},
+                                 FluxFunction{FluxLaw::linear, 0.75, 1.},
+                                 FluxFunction{FluxLaw::burgers, 1., 1.},
+                                 FluxFunction{FluxLaw::traffic, 1., 4.}})
+      for (const auto type : {NumericalFlux::upwind, NumericalFlux::godunov,
+                              NumericalFlux::local_lax_friedrichs})
+        {
+          const EdgeLaw law{f, type};
+          with_fixed_law(law, [&](const auto &fixed) {
+            for (const double a : grid(-1.3, 4.1, 23))
+              for (const double c : grid(-0.7, 4.4, 19))
+                {
+                  VA A = a, C = c;
+                  for (unsigned int l = 0; l < VA::size(); ++l)
+                    A[l] += 0.1 * l, C[l] -= 0.3 * l;
+                  const VA F = fixed.flux(A, C), s = fixed.derivative(A), v = fixed.value(C);
+                  equal = equal && same(fixed.flux(a, c), law.flux(a, c)) &&
+                          same(fixed.derivative(a), law.derivative(a)) &&
+                          same(fixed.value(c), law.value(c));
+                  for (unsigned int l = 0; l < VA::size(); ++l)
+                    equal = equal && same(F[l], law.flux(A[l], C[l])) &&
+                            same(s[l], law.derivative(A[l])) && same(v[l], law.value(C[l]));
+                }
+          });
+        }
+    std::cout << "law fixed at compile time = runtime law, bit for bit: " << (equal ? "yes" : "no")
+              << std::endl;
   }
 
   // discrete stationary vertex values (Definition 4.4)
