@@ -304,6 +304,9 @@ namespace granular_dg::network
     /// others empty); gathered_sample() has all edges on rank 0.
     std::vector<std::vector<std::pair<double, double>>>
     sample(unsigned int points_per_cell) const;
+    /// the pairs (x, u) of one edge of this rank
+    std::vector<std::pair<double, double>>
+    sample_edge(unsigned int k, unsigned int points_per_cell) const;
     std::vector<std::vector<std::pair<double, double>>>
     gathered_sample(unsigned int points_per_cell) const;
 
@@ -396,11 +399,10 @@ namespace granular_dg::network
     /// rank 0: the profiles of a snapshot from the gathered samples
     void write_profiles(const std::string &directory, unsigned int index, double t,
                         const Samples &profile, const std::vector<double> &vertices) const;
-    /// The VTU file `name` of the edges with samples and of the vertices
-    /// this rank reports (releasing the samples of each edge once they are
-    /// in its patch).
+    /// The VTU file `name` of this rank's edges and of the vertices it
+    /// reports, sampled edge by edge as the file is written.
     void write_vtu(const std::string &directory, const std::string &name, unsigned int index,
-                   double t, Samples samples, const std::vector<double> &vertices) const;
+                   double t, const std::vector<double> &vertices) const;
     /// What a checkpoint holds (the modes of every edge, the vertex values,
     /// the far-end inflow and the diagnostics), written and read alike.
     template <typename Archive>

@@ -981,20 +981,28 @@ namespace granular_dg::network
   }
 
   template <typename Law>
+  std::vector<std::pair<double, double>>
+  NetworkProblem<Law>::sample_edge(const unsigned int k, const unsigned int points_per_cell) const
+  {
+    std::vector<std::pair<double, double>> out;
+    out.reserve(edge_cells[k] * points_per_cell);
+    for (unsigned int c = 0; c < edge_cells[k]; ++c)
+      for (unsigned int j = 0; j < points_per_cell; ++j)
+        {
+          const double xi = points_per_cell == 1 ? 0.5 : j / double(points_per_cell - 1);
+          out.emplace_back(c * edge_h[k] + xi * edge_h[k],
+                           lines->value(u.edges.data(), local(k), c, xi));
+        }
+    return out;
+  }
+
+  template <typename Law>
   std::vector<std::vector<std::pair<double, double>>>
   NetworkProblem<Law>::sample(const unsigned int points_per_cell) const
   {
     std::vector<std::vector<std::pair<double, double>>> out(net.edges.size());
     for (const unsigned int k : ranks->edges())
-      {
-        for (unsigned int c = 0; c < edge_cells[k]; ++c)
-          for (unsigned int j = 0; j < points_per_cell; ++j)
-            {
-              const double xi = points_per_cell == 1 ? 0.5 : j / double(points_per_cell - 1);
-              out[k].emplace_back(c * edge_h[k] + xi * edge_h[k],
-                                  lines->value(u.edges.data(), local(k), c, xi));
-            }
-      }
+      out[k] = sample_edge(k, points_per_cell);
     return out;
   }
 

@@ -62,6 +62,11 @@ namespace granular_dg::network
     /// edge, the edge's number: 0 for a vertex)
     inline const std::vector<std::string> vtu_fields{"u", "flux", "x_edge", "edge"};
 
+    /// the points of one VTU piece, above which a file gets another piece
+    /// (VTK's UnstructuredGrid format allows many; ParaView reads them as
+    /// one data set)
+    inline constexpr std::size_t vtu_piece_points = std::size_t(1) << 18;
+
     inline DataOutBase::VtkFlags
     vtu_flags(const double time, const unsigned int index)
     {
@@ -75,43 +80,65 @@ namespace granular_dg::network
   template <typename Law>
   void
   NetworkProblem<Law>::write_vtu(const std::string &directory, const std::string &name,
-                                 const unsigned int index, const double time, Samples samples,
+                                 const unsigned int index, const double time,
                                  const std::vector<double> &vertices) const
   {
     // one patch per edge through all its sample points (the points of a
     // face appear twice, once with each cell's trace: the patch has a line
-    // of length 0 there)
-    const GraphDrawing embed(net);
+    // of length 0 there), then one per vertex; written in pieces of about
+    // internal::vtu_piece_points points, so the writer's buffers (about
+    // 110 bytes per point) stay bounded on large graphs
+    const GraphDrawing                     embed(net);
+    const auto flags        = internal::vtu_flags(time, index);
+    const auto later_pieces = internal::vtu_flags(std::numeric_limits<double>::min(),
+                                                  std::numeric_limits<unsigned int>::min());
     std::vector<DataOutBase::Patch<1, 2>> patches;
-    std::vector<Point<2>>              points;
-    std::vector<std::array<double, 4>> values;
-    for (unsigned int k = 0; k < samples.size(); ++k)
-      {
-        points.clear();
-        values.clear();
-        for (const auto &[x, value] : samples[k])
-          {
-            const auto p = embed(k, x);
-            points.emplace_back(p[0], p[1]);
-            values.push_back({{value, laws[k].value(value), x, double(k + 1)}});
-          }
-        if (!points.empty())
-          patches.push_back(internal::line_patch(points, values, patches.size()));
-        // (the samples of an edge are in its patch now)
-        Samples::value_type().swap(samples[k]);
-      }
-    // every vertex this rank reports: a patch of length 0 with its value
-    // (edge number 0)
-    for (unsigned int v = 0; v < net.vertices.size(); ++v)
-      if (ranks->reports_vertex(v))
-        {
-          const Point<2> &p = embed.vertex(v);
-          patches.push_back(internal::line_patch({p, p},
-                                       {{{vertices[v], 0., 0., 0.}}, {{vertices[v], 0., 0., 0.}}},
-                                       patches.size()));
-        }
+    std::size_t                            n_points = 0, n_pieces = 0;
     write_to_file(directory + "/" + name, [&](std::ostream &out) {
-      DataOutBase::write_vtu(patches, internal::vtu_fields, {}, internal::vtu_flags(time, index), out);
+      // (a rank without edges or vertices writes one empty piece)
+      const auto write_piece = [&]() {
+        // (the time and cycle as field data of the first piece only)
+        DataOutBase::write_vtu_main(patches, internal::vtu_fields, {},
+                                    n_pieces == 0 ? flags : later_pieces, out);
+        patches.clear();
+        n_points = 0;
+        ++n_pieces;
+      };
+      const auto add = [&](DataOutBase::Patch<1, 2> &&patch) {
+        n_points += patch.data.n_cols();
+        patches.push_back(std::move(patch));
+        if (n_points >= internal::vtu_piece_points)
+          write_piece();
+      };
+      DataOutBase::write_vtu_header(out, flags);
+      std::vector<Point<2>>              points;
+      std::vector<std::array<double, 4>> values;
+      for (unsigned int k = 0; k < net.edges.size(); ++k)
+        if (ranks->owns_edge(k))
+          {
+            points.clear();
+            values.clear();
+            for (const auto &[x, value] : sample_edge(k, vtu_points()))
+              {
+                const auto p = embed(k, x);
+                points.emplace_back(p[0], p[1]);
+                values.push_back({{value, laws[k].value(value), x, double(k + 1)}});
+              }
+            add(internal::line_patch(points, values, patches.size()));
+          }
+      // every vertex this rank reports: a patch of length 0 with its value
+      // (edge number 0)
+      for (unsigned int v = 0; v < net.vertices.size(); ++v)
+        if (ranks->reports_vertex(v))
+          {
+            const Point<2> &p = embed.vertex(v);
+            add(internal::line_patch({p, p},
+                                     {{{vertices[v], 0., 0., 0.}}, {{vertices[v], 0., 0., 0.}}},
+                                     patches.size()));
+          }
+      if (!patches.empty() || n_pieces == 0)
+        write_piece();
+      DataOutBase::write_vtu_footer(out);
     });
   }
 
@@ -175,18 +202,16 @@ namespace granular_dg::network
                                       const double time)
   {
     // the profiles gathered on rank 0, which writes them; the VTU in one
-    // file on one rank (from the same samples when the profiles sample
-    // alike), else in one piece per rank and a .pvtu record by rank 0
+    // file on one rank, else in one piece per rank and a .pvtu record by
+    // rank 0
     const auto vertices = vertex_values();
     const bool vtu = options.write_vtu, profiles = options.profiles != Profiles::none;
     const bool one_file = vtu && !ranks->parallel();
-    Samples    vtu_samples = vtu ? sample(vtu_points()) : Samples();
     if (profiles)
       {
-        const bool    same  = one_file && vtu_points() == profile_points();
-        const Samples other = same ? Samples() : gathered_sample(profile_points());
+        const Samples profile = gathered_sample(profile_points());
         if (ranks->rank() == 0)
-          write_profiles(directory, index, time, same ? vtu_samples : other, vertices);
+          write_profiles(directory, index, time, profile, vertices);
       }
     SnapshotFiles files;
     if (profiles)
@@ -199,14 +224,14 @@ namespace granular_dg::network
     const std::string base = internal::snapshot_name("solution-", index, "");
     if (one_file)
       {
-        write_vtu(directory, base + ".vtu", index, time, std::move(vtu_samples), vertices);
+        write_vtu(directory, base + ".vtu", index, time, vertices);
         files.pvd_entry = files.main_file = base + ".vtu";
         return files;
       }
     const auto piece = [&](const unsigned int r) {
       return base + "." + Utilities::int_to_string(r, 4) + ".vtu";
     };
-    write_vtu(directory, piece(ranks->rank()), index, time, std::move(vtu_samples), vertices);
+    write_vtu(directory, piece(ranks->rank()), index, time, vertices);
     if (ranks->rank() == 0)
       {
         std::vector<std::string> pieces;
