@@ -142,7 +142,7 @@ namespace
           {
             if (root)
               std::cout << "granular_dg " << GRANULAR_DG_VERSION << " (git "
-                        << GRANULAR_DG_GIT_REVISION << "), deal.II " << DEAL_II_PACKAGE_VERSION
+                        << git_revision() << "), deal.II " << DEAL_II_PACKAGE_VERSION
                         << std::endl;
             return 0;
           }

@@ -54,3 +54,10 @@ granular_dg_test(input/include_scene PRM input/include_scene.prm
   COMPARE summary.json:status,final_time NUMDIFF -a 0 -r 0)
 granular_dg_test(input/include_two_scenes PRM input/include_two_scenes.prm
   COPY input/include_scene_common.prm input/include_common.prm EXIT 2 KEEP_OUTPUT)
+
+# --version names the revision built (cmake/git_revision.cmake runs at every
+# build), the launcher's and the engine's alike.
+granular_dg_test(input/version_is_head EXE ${TEST_PYTHON}
+  ARGS ${CMAKE_CURRENT_SOURCE_DIR}/input/version_is_head.py $<TARGET_FILE:granular_dg>
+       $<TARGET_FILE:granular_dg_engine> ${CMAKE_SOURCE_DIR}
+  COMPARE stdout KEEP_OUTPUT NUMDIFF -a 0 -r 0)
