@@ -148,6 +148,11 @@ granular_dg_test(network/wrong_initial_data PRM ../prm/network_example_7_5.prm
   ARGS --set "Network/Edge 1/initial data=if(x < 0.5, 2, 1)" EXIT 2 KEEP_OUTPUT)
 granular_dg_test(network/bad_vertex_value PRM ../prm/network_example_7_4.prm
   ARGS --set "Network/vertex initial value=c0" EXIT 2 KEEP_OUTPUT)
+# a Network-wide vertex value that no vertex takes (every vertex without
+# volume) is refused, not ignored
+granular_dg_test(network/vertex_value_never_taken PRM ../prm/network_example_7_4.prm
+  ARGS --set "Network/vertex width factor=0" --set "Network/vertex initial value=0.3"
+  EXIT 2 KEEP_OUTPUT)
 granular_dg_test(network/bad_initial_expression PRM ../prm/network_example_7_4.prm
   ARGS --set "Network/Edge 2/initial data=1 + y" EXIT 2 KEEP_OUTPUT)
 # The edges run in one line engine (EdgeLines): the MatrixFree engine is refused.

@@ -373,7 +373,8 @@ namespace granular_dg::network
           "u_0 of every vertex with volume at t = 0 (unless its Vertex N section says "
           "otherwise): 'stationary' (the discrete stationary value c_0 of the initial edge "
           "traces, Definition 4.4) or a constant expression, e.g. sqrt(2/3). A vertex without "
-          "volume (width factor 0) takes the balance of its ends' traces instead.");
+          "volume (width factor 0) takes the balance of its ends' traces instead; a constant "
+          "that no vertex takes is refused.");
     for (unsigned int i = 0; i < max_vertex_sections; ++i)
       {
         VertexSection &v = vertex_sections[i];
@@ -432,6 +433,13 @@ namespace granular_dg::network
                     ", a vertex without volume (width factor 0): its value balances the "
                     "fluxes of its ends at every stage and has no initial value of its own");
       }
+    // a Network-wide constant that no vertex takes could never act
+    bool taken = !value;
+    for (unsigned int v = 0; v < graph.vertices.size(); ++v)
+      taken = taken || (value_given[v].empty() && graph.vertices[v].width_factor > 0);
+    require(taken, "Network/vertex initial value", vertex_initial_value,
+            "'stationary' (the default): no vertex takes a constant here, as each has width "
+            "factor 0 (no volume) or an initial value of its own");
     graph.validate(graph_file.empty() ? std::string("Network") :
                                         "Network/graph file '" + graph_file + "'");
   }
