@@ -11,6 +11,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <iomanip>
 #include <iostream>
 #include <map>
 #include <sstream>
@@ -394,10 +395,22 @@ namespace granular_dg
   {
     /// A parameter's value as resume compares it: the output directory as a
     /// canonical path (rel, ./rel/ and /abs/rel are one directory), the
-    /// output times as a sorted list of numbers.
+    /// output times as a sorted list of numbers, and a number as its value
+    /// (0.1, 0.10 and 1e-1 are one number).
     std::string
     normalised(const std::string &name, const std::string &value)
     {
+      {
+        const std::string number = Utilities::trim(value);
+        char             *end    = nullptr;
+        const double      x      = std::strtod(number.c_str(), &end);
+        if (!number.empty() && *end == '\0')
+          {
+            std::ostringstream out;
+            out << std::setprecision(17) << x;
+            return out.str();
+          }
+      }
       if (name == "Output/directory")
         {
           std::error_code ec;
