@@ -271,6 +271,21 @@ namespace granular_dg
     /// subdirectories too). A file is removed only if it lies inside
     /// directory (a manifest is plain text a user could edit) and is not
     /// this run's parameter file; files a user put beside them are kept.
+    /// Removes the lock file `lock` unless a running process holds it.
+    void
+    remove_unheld_lock(const fs::path &lock)
+    {
+      const int fd = ::open(lock.c_str(), O_RDWR);
+      if (fd < 0)
+        return;
+      struct flock whole = {};
+      whole.l_type       = F_WRLCK;
+      whole.l_whence     = SEEK_SET;
+      if (::fcntl(fd, F_SETLK, &whole) == 0)
+        ::unlink(lock.c_str());
+      ::close(fd);
+    }
+
     void
     remove_previous_run(const fs::path &directory)
     {
@@ -290,7 +305,14 @@ namespace granular_dg
         }
       remove_checkpoints(directory.string());
       for (const auto &sub : subdirectories)
-        remove_checkpoints((directory / sub).string());
+        {
+          // a part's folder (before-periodic/) goes with its bookkeeping if
+          // nothing else is left in it
+          remove_checkpoints((directory / sub).string());
+          fs::remove(directory / sub / manifest_name, ec);
+          remove_unheld_lock(directory / sub / ".lock");
+          fs::remove(directory / sub, ec);
+        }
       fs::remove(directory / manifest_name, ec);
     }
 

@@ -102,6 +102,12 @@ granular_dg_test(hardening/user_files_kept EXE ${TEST_PYTHON}
   ARGS ${CMAKE_CURRENT_SOURCE_DIR}/hardening/user_files_kept.py $<TARGET_FILE:granular_dg>
        ${CMAKE_CURRENT_SOURCE_DIR}/../prm/elasticity_shock.prm
   COMPARE stdout KEEP_OUTPUT NUMDIFF -a 0 -r 0)
+# Overwriting a two-part run of the layered strip removes its
+# before-periodic/ folder unless the user put a file into it.
+granular_dg_test(hardening/overwrite_two_part EXE ${TEST_PYTHON}
+  ARGS ${CMAKE_CURRENT_SOURCE_DIR}/hardening/overwrite_two_part.py $<TARGET_FILE:granular_dg>
+       ${CMAKE_CURRENT_SOURCE_DIR}/../prm/layered_1d.prm
+  COMPARE stdout KEEP_OUTPUT NUMDIFF -a 0 -r 0)
 # The memory refusal counts what writing a snapshot adds (DataOut's patches
 # and the file's buffers): a run that passed the check could be killed at its
 # first snapshot. The words name the format; the numbers at -r 1 as above.
