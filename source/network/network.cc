@@ -13,6 +13,7 @@
 #include <immintrin.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 
 namespace granular_dg::network
@@ -207,9 +208,12 @@ namespace granular_dg::network
                    const QGauss<1> &quad, const double x0, const double h, const double a,
                    const double b, std::vector<double> &result, const unsigned int depth)
   {
+    // (on the stack: a graph of 10^6 edges has 1.6 10^7 cells)
+    using Moments = std::array<double, 8>;
     const unsigned int n_modes = legendre.size();
+    AssertThrow(n_modes <= Moments().size(), ExcMessage("at most 8 Legendre moments"));
     auto moments = [&](const double lo, const double hi) {
-      std::vector<double> m(n_modes, 0.);
+      Moments m{};
       // the points in the cell's coordinate, from lo rather than from x:
       // (x - x0) / h would carry the rounding of x magnified by x / h, and
       // the two levels would then never agree in cells far from x = 0

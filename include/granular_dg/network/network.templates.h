@@ -236,17 +236,18 @@ namespace granular_dg::network
   double
   NetworkProblem<Law>::initialize()
   {
-    const QGauss<1> quad(method.degree + 3);
+    const QGauss<1>     quad(method.degree + 3);
+    std::vector<double> moments(method.degree + 1), pieces;
     for (const unsigned int k : ranks->edges())
       {
         const double h = edge_h[k];
         data[k].initial->set_time(0.);
         for (unsigned int c = 0; c < edge_cells[k]; ++c)
           {
-            const double        x0 = c * h;
-            std::vector<double> moments(method.degree + 1, 0.);
+            const double x0 = c * h;
+            std::fill(moments.begin(), moments.end(), 0.);
             // split at the known jumps first, then refine adaptively
-            std::vector<double> pieces{x0, x0 + h};
+            pieces.assign({x0, x0 + h});
             for (const double b : data[k].initial_breakpoints)
               if (b > x0 && b < x0 + h)
                 pieces.push_back(b);
