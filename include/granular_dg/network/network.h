@@ -58,6 +58,12 @@ namespace granular_dg::network
     none
   };
 
+  /// The points of one piece of a VTU file, above which the file gets
+  /// another piece of whole edges (VTK's UnstructuredGrid format allows many;
+  /// ParaView reads them as one data set): deal.II's writer holds ~110 bytes
+  /// per point of the piece it writes.
+  inline constexpr std::size_t vtu_piece_points = std::size_t(1) << 18;
+
   /// What the network adds to the method of every scene
   /// (dg::DiscretizationParameters): the mesh of the edges, the integrator
   /// and what a snapshot writes. (The numerical flux is the edges' Law's.)

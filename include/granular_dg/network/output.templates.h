@@ -62,11 +62,6 @@ namespace granular_dg::network
     /// edge, the edge's number: 0 for a vertex)
     inline const std::vector<std::string> vtu_fields{"u", "flux", "x_edge", "edge"};
 
-    /// the points of one VTU piece, above which a file gets another piece
-    /// (VTK's UnstructuredGrid format allows many; ParaView reads them as
-    /// one data set)
-    inline constexpr std::size_t vtu_piece_points = std::size_t(1) << 18;
-
     inline DataOutBase::VtkFlags
     vtu_flags(const double time, const unsigned int index)
     {
@@ -86,7 +81,7 @@ namespace granular_dg::network
     // one patch per edge through all its sample points (the points of a
     // face appear twice, once with each cell's trace: the patch has a line
     // of length 0 there), then one per vertex; written in pieces of about
-    // internal::vtu_piece_points points, so the writer's buffers (about
+    // vtu_piece_points points, so the writer's buffers (about
     // 110 bytes per point) stay bounded on large graphs
     const GraphDrawing                     embed(net);
     const auto flags        = internal::vtu_flags(time, index);
@@ -107,7 +102,7 @@ namespace granular_dg::network
       const auto add = [&](DataOutBase::Patch<1, 2> &&patch) {
         n_points += patch.data.n_cols();
         patches.push_back(std::move(patch));
-        if (n_points >= internal::vtu_piece_points)
+        if (n_points >= vtu_piece_points)
           write_piece();
       };
       DataOutBase::write_vtu_header(out, flags);
