@@ -24,17 +24,17 @@ if(PVPYTHON_EXECUTABLE)
            ${CMAKE_CURRENT_BINARY_DIR}/hdf5_np${ranks}/out/solution.xdmf
       COMPARE stdout NUMDIFF -a 0 -r 0 KEEP_OUTPUT FIXTURES_REQUIRED hdf5_np${ranks})
   endforeach()
-  # A network VTU in several pieces: the 6 x 6 city grid at 2,048 cells per
-  # unit length and p = 2 (172,032 cells, 516,168 points with the vertices)
-  # is above the writer's 2^18 points per piece, so one rank's file holds two
-  # pieces, and on 2 ranks rank 0's file two and rank 1's one. Four steps
-  # keep the mass balance (residual below 1e-12), and ParaView reads every
-  # point of every piece: 516,168 per step on both rank counts.
+  # A network VTU in several pieces: the 6 x 6 city grid at 17,000 cells
+  # per unit length and p = 2 (1,428,000 cells, 4,284,072 points with the
+  # vertices) is above the writer's 2^22 points per piece, so one rank's file
+  # holds two pieces (on 2 ranks each rank's file one). Two steps keep the
+  # mass balance (residual below 1e-12), and ParaView reads every point of
+  # every piece: 4,284,072 per step on both rank counts.
   foreach(ranks 1 2)
     granular_dg_test(paraview/network_pieces_run_np${ranks} PRM ../prm/network_city_grid.prm
       COPY ../prm/network_city_grid.csv ../prm/network_city_grid_vertices.csv
-      ARGS --set "Network/cells per unit length=2048" --set "Network/edge profiles=none"
-           --set "Time stepping/final time=1e-4" --set "Output/output times=1e-4"
+      ARGS --set "Network/cells per unit length=17000" --set "Network/edge profiles=none"
+           --set "Time stepping/final time=5e-6" --set "Output/output times=5e-6"
       MPI ${ranks} COMPARE timeseries.csv:time,mass_balance_residual NUMDIFF -a 1e-12 -r 0
       FIXTURES_SETUP network_pieces_np${ranks}
       WORKDIR ${CMAKE_CURRENT_BINARY_DIR}/network_pieces_np${ranks} LABELS mpi)
