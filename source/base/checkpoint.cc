@@ -400,17 +400,6 @@ namespace granular_dg
     std::string
     normalised(const std::string &name, const std::string &value)
     {
-      {
-        const std::string number = Utilities::trim(value);
-        char             *end    = nullptr;
-        const double      x      = std::strtod(number.c_str(), &end);
-        if (!number.empty() && *end == '\0')
-          {
-            std::ostringstream out;
-            out << std::setprecision(17) << x;
-            return out.str();
-          }
-      }
       if (name == "Output/directory")
         {
           std::error_code ec;
@@ -432,6 +421,15 @@ namespace granular_dg
           std::ostringstream out;
           for (const double t : times)
             out << t << ',';
+          return out.str();
+        }
+      const std::string number = Utilities::trim(value);
+      char             *end    = nullptr;
+      const double      x      = std::strtod(number.c_str(), &end);
+      if (!number.empty() && *end == '\0')
+        {
+          std::ostringstream out;
+          out << std::setprecision(17) << x;
           return out.str();
         }
       return value;

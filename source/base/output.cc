@@ -266,12 +266,9 @@ namespace granular_dg
       return names;
     }
 
-    /// Remove what the previous run in directory wrote: the files its
-    /// manifest lists and its checkpoint files (those of its part runs in
-    /// subdirectories too). A file is removed only if it lies inside
-    /// directory (a manifest is plain text a user could edit) and is not
-    /// this run's parameter file; files a user put beside them are kept.
-    /// Removes the lock file `lock` unless a running process holds it.
+    /// Removes the lock file `lock` unless a running process holds it (not
+    /// this one: closing the descriptor would release this process's lock on
+    /// the file; a run's parts lock their folders after the run cleared them).
     void
     remove_unheld_lock(const fs::path &lock)
     {
@@ -286,6 +283,12 @@ namespace granular_dg
       ::close(fd);
     }
 
+    /// Remove what the previous run in directory wrote: the files its
+    /// manifest lists and its checkpoint files (those of its part runs in
+    /// subdirectories too). A file is removed only if it lies inside
+    /// directory (a manifest is plain text a user could edit) and is not
+    /// this run's parameter file; files a user put beside them are kept. A
+    /// part's folder goes too when nothing else is left in it.
     void
     remove_previous_run(const fs::path &directory)
     {

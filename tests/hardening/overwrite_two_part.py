@@ -3,7 +3,8 @@
 (Boundary conditions/periodic from > 0, the first part in OUT/before-periodic/)
 removes that part's folder with its bookkeeping when a one-part run takes
 the directory, and keeps the folder when the user put a file into it (with
-that file only).
+that file only); a two-part run over a two-part run keeps its new first
+part.
 
 usage: overwrite_two_part.py EXE PRM   (in an empty directory)
 """
@@ -29,6 +30,8 @@ def listing():
 
 print(f'two-part run: exit {run(*two_part)}, out/before-periodic/ holds results: '
       + ('yes' if 'summary.json' in (listing() or []) else 'no'))
+print(f'two-part run over it: exit {run(*two_part, *overwrite)}, out/before-periodic/ holds '
+      'results: ' + ('yes' if 'summary.json' in (listing() or []) else 'no'))
 print(f'one-part run over it: exit {run(*overwrite)}, out/before-periodic/ left: {listing()}')
 print(f'two-part run again: exit {run(*two_part, *overwrite)}')
 open('out/before-periodic/mine.txt', 'w').write('the user\'s\n')
