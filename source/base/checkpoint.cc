@@ -14,6 +14,7 @@
 #include <iomanip>
 #include <iostream>
 #include <map>
+#include <optional>
 #include <sstream>
 
 #include <unistd.h>
@@ -393,6 +394,16 @@ namespace granular_dg
 
   namespace
   {
+    /// s (trimmed) as a number, if all of it is one (strtod's syntax)
+    std::optional<double>
+    number_in(const std::string &s)
+    {
+      const std::string text = Utilities::trim(s);
+      char             *end  = nullptr;
+      const double      x    = std::strtod(text.c_str(), &end);
+      return !text.empty() && *end == '\0' ? std::optional<double>(x) : std::nullopt;
+    }
+
     /// A parameter's value as resume compares it: the output directory as a
     /// canonical path (rel, ./rel/ and /abs/rel are one directory), the
     /// output times as a sorted list of numbers, and a number as its value
@@ -411,11 +422,10 @@ namespace granular_dg
           std::vector<double> times;
           for (const auto &s : Utilities::split_string_list(value, ','))
             {
-              char        *end = nullptr;
-              const double t   = std::strtod(s.c_str(), &end);
-              if (end == s.c_str() || *end != '\0')
+              const auto t = number_in(s);
+              if (!t)
                 return value;
-              times.push_back(t);
+              times.push_back(*t);
             }
           std::sort(times.begin(), times.end());
           std::ostringstream out;
@@ -423,13 +433,10 @@ namespace granular_dg
             out << t << ',';
           return out.str();
         }
-      const std::string number = Utilities::trim(value);
-      char             *end    = nullptr;
-      const double      x      = std::strtod(number.c_str(), &end);
-      if (!number.empty() && *end == '\0')
+      if (const auto x = number_in(value))
         {
           std::ostringstream out;
-          out << std::setprecision(17) << x;
+          out << std::setprecision(17) << *x;
           return out.str();
         }
       return value;

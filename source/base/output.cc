@@ -266,6 +266,16 @@ namespace granular_dg
       return names;
     }
 
+    /// a write lock on a whole file (fcntl)
+    struct flock
+    whole_file_write_lock()
+    {
+      struct flock whole = {};
+      whole.l_type       = F_WRLCK;
+      whole.l_whence     = SEEK_SET;
+      return whole;
+    }
+
     /// Removes the lock file `lock` unless a running process holds it (not
     /// this one: closing the descriptor would release this process's lock on
     /// the file; a run's parts lock their folders after the run cleared them).
@@ -275,9 +285,7 @@ namespace granular_dg
       const int fd = ::open(lock.c_str(), O_RDWR);
       if (fd < 0)
         return;
-      struct flock whole = {};
-      whole.l_type       = F_WRLCK;
-      whole.l_whence     = SEEK_SET;
+      struct flock whole = whole_file_write_lock();
       if (::fcntl(fd, F_SETLK, &whole) == 0)
         ::unlink(lock.c_str());
       ::close(fd);
@@ -442,9 +450,7 @@ namespace granular_dg
     const int         fd   = ::open(lock.c_str(), O_RDWR | O_CREAT, 0644);
     require(fd >= 0, "Output/directory", directory,
             "a directory where " + lock + " can be created");
-    struct flock whole = {};
-    whole.l_type       = F_WRLCK;
-    whole.l_whence     = SEEK_SET;
+    struct flock whole = whole_file_write_lock();
     if (::fcntl(fd, F_SETLK, &whole) != 0)
       {
         struct flock holder = whole;
