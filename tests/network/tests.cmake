@@ -220,12 +220,13 @@ granular_dg_test(network/ring_mass_dg PRM network/ring.prm ${ring_files}
   COMPARE summary.json:diagnostics/mass_balance_residual_max,diagnostics/mass_step_residual_max NUMDIFF -a 1e-13 -r 0)
 
 # Graph validation: one line naming the file, line, edge or vertex; exit 2
-# (hex_id: a vertex id written 0x1 is not an integer id; subnormal: a flux
+# (hex_id: a vertex id written 0x1 is not an integer id; fractional_edge_id:
+# an edge id 2.5 is not an integer edge id; subnormal: a flux
 # parameter of 1e-308 is not of normal magnitude; isolated_vertex: a
 # vertex only the vertex file lists is blamed on that file and its line;
 # burgers_parameter: a parameter on a burgers road, which has none).
-foreach(bad duplicate_id negative_length nonfinite subnormal self_loop bad_header hex_id
-        burgers_parameter)
+foreach(bad duplicate_id fractional_edge_id negative_length nonfinite subnormal self_loop
+        bad_header hex_id burgers_parameter)
   granular_dg_test(network/graph_${bad} PRM network/ring.prm
     COPY network/ring_${bad}.csv network/ring_vertices.csv
     ARGS --set "Network/graph file=ring_${bad}.csv" EXIT 2 KEEP_OUTPUT)
@@ -245,6 +246,17 @@ granular_dg_test(network/graph_not_a_file PRM network/ring.prm
 granular_dg_test(network/graph_bom PRM network/ring.prm
   COPY network/ring_bom.csv network/ring_vertices_bom.csv
   ARGS --set "Network/graph file=ring_bom.csv" --set "Network/vertex file=ring_vertices_bom.csv"
+       --set "Time stepping/final time=1" --set "Output/output times=1"
+  COMPARE summary.json:n_cells,diagnostics/n_vertices,diagnostics/vertex_values_final
+  NUMDIFF -r 1e-12 -a 0)
+# Graph and vertex files written loosely (columns in another order, vertex
+# ids 10, 20, 30 and vertex rows out of order, blanks and a tab around
+# fields, blank and indented comment lines between rows, empty last fields,
+# no line end after the last row) read as the plain ring, as graph_bom.
+granular_dg_test(network/graph_irregular PRM network/ring.prm
+  COPY network/ring_irregular.csv network/ring_vertices_irregular.csv
+  ARGS --set "Network/graph file=ring_irregular.csv"
+       --set "Network/vertex file=ring_vertices_irregular.csv"
        --set "Time stepping/final time=1" --set "Output/output times=1"
   COMPARE summary.json:n_cells,diagnostics/n_vertices,diagnostics/vertex_values_final
   NUMDIFF -r 1e-12 -a 0)

@@ -18,8 +18,11 @@
 #include <fstream>
 #include <map>
 #include <regex>
-#include <sstream>
+#include <limits>
+#include <optional>
+#include <string_view>
 #include <tuple>
+#include <unordered_map>
 
 namespace granular_dg::network
 {
@@ -43,14 +46,6 @@ namespace granular_dg::network
     section(const std::string &kind, const unsigned int i)
     {
       return kind + " " + std::to_string(i + 1);
-    }
-
-    std::string
-    trim(const std::string &s)
-    {
-      const auto a = s.find_first_not_of(" \t\r");
-      const auto b = s.find_last_not_of(" \t\r");
-      return a == std::string::npos ? "" : s.substr(a, b - a + 1);
     }
 
     /// s as a double, if all of it is one in decimal notation (std::stod's
@@ -180,27 +175,73 @@ namespace granular_dg::network
       return s;
     }
 
-    /// The rows of a CSV file: (line number, fields), after the header,
-    /// whose names must be among `allowed` and include the first n_required.
-    struct CsvTable
+    /// The rows of a CSV file after its header, whose names must be among
+    /// `allowed` and include the first n_required: the file's text once and
+    /// each field as a view into it (no string per field: a graph of 10^6
+    /// edges has 5-9 million).
+    class CsvTable
     {
-      std::map<std::string, unsigned int>                          column;
-      std::vector<std::pair<unsigned int, std::vector<std::string>>> rows;
-      /// FNV-1a of the file's bytes (what a checkpoint compares)
-      std::uint64_t                                                content_hash = 0;
+    public:
+      CsvTable(const std::string &parameter, const std::string &file,
+               const std::vector<std::string> &allowed, unsigned int n_required);
+      CsvTable(const CsvTable &) = delete;
+      CsvTable &operator=(const CsvTable &) = delete;
 
-      /// the field of a column ("" if the file has no such column or the row ends before)
-      std::string
-      get(const std::vector<std::string> &row, const std::string &name) const
+      /// FNV-1a of the file's bytes (what a checkpoint compares)
+      std::uint64_t content_hash() const { return hash; }
+      unsigned int  n_rows() const { return lines.size(); }
+      /// the line number of row r
+      unsigned int  line(const unsigned int r) const { return lines[r]; }
+      /// the index of a column (n_columns if the file has no such column)
+      unsigned int
+      column(const std::string &name) const
       {
-        const auto c = column.find(name);
-        return c == column.end() || c->second >= row.size() ? "" : row[c->second];
+        const auto c = columns.find(name);
+        return c == columns.end() ? n_columns : c->second;
       }
+      /// the field of row r in column c ("" if the file has no such column
+      /// or the row ends before)
+      std::string_view
+      get(const unsigned int r, const unsigned int c) const
+      {
+        return c < n_columns ? fields[std::size_t(r) * n_columns + c] : std::string_view();
+      }
+
+    private:
+      std::map<std::string, unsigned int> columns;
+      unsigned int                        n_columns = 0;
+      std::string                         text;
+      std::vector<std::string_view>       fields;
+      std::vector<unsigned int>           lines;
+      std::uint64_t                       hash = 0;
     };
 
-    CsvTable
-    read_csv(const std::string &parameter, const std::string &file,
-             const std::vector<std::string> &allowed, const unsigned int n_required)
+    std::string_view
+    trim(std::string_view s)
+    {
+      const auto a = s.find_first_not_of(" \t\r");
+      const auto b = s.find_last_not_of(" \t\r");
+      return a == std::string_view::npos ? std::string_view() : s.substr(a, b - a + 1);
+    }
+
+    /// the fields of a line, trimmed: split at commas, the empty field after
+    /// a comma that ends the line dropped (as std::getline splits)
+    void
+    split_fields(const std::string_view line, std::vector<std::string_view> &fields)
+    {
+      fields.clear();
+      for (std::size_t start = 0;;)
+        {
+          const auto comma = line.find(',', start);
+          fields.push_back(trim(line.substr(start, comma - start)));
+          if (comma == std::string_view::npos || comma + 1 == line.size())
+            return;
+          start = comma + 1;
+        }
+    }
+
+    CsvTable::CsvTable(const std::string &parameter, const std::string &file,
+                       const std::vector<std::string> &allowed, const unsigned int n_required)
     {
       const std::string path = resolve_input_path(file);
       std::ifstream     in(path);
@@ -209,60 +250,80 @@ namespace granular_dg::network
       require(in && std::filesystem::is_regular_file(path, ec), parameter, file,
               "a readable CSV file (relative paths are relative to the parameter file: " + path +
                 ")");
-      std::ostringstream content;
-      content << in.rdbuf();
-      CsvTable table;
-      table.content_hash = fnv1a(content.str());
-      std::istringstream lines(content.str());
-      std::string        line;
-      unsigned int       number = 0;
-      while (std::getline(lines, line))
+      text.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+      hash = fnv1a(text);
+      const std::string_view all(text);
+      // a spreadsheet's "CSV UTF-8" starts with a byte-order mark (and
+      // trim() takes the \r of CRLF line ends)
+      std::size_t                   start = all.rfind("\xEF\xBB\xBF", 0) == 0 ? 3 : 0;
+      std::vector<std::string_view> row;
+      for (unsigned int number = 1; start < all.size(); ++number)
         {
-          ++number;
-          // a spreadsheet's "CSV UTF-8" starts with a byte-order mark (and
-          // trim() takes the \r of CRLF line ends)
-          if (number == 1 && line.rfind("\xEF\xBB\xBF", 0) == 0)
-            line.erase(0, 3);
+          const auto             end  = std::min(all.find('\n', start), all.size());
+          const std::string_view line = all.substr(start, end - start);
+          start                       = end + 1;
           if (trim(line).empty() || trim(line)[0] == '#')
             continue;
-          std::vector<std::string> fields;
-          std::stringstream        split(line);
-          for (std::string f; std::getline(split, f, ',');)
-            fields.push_back(trim(f));
-          if (table.column.empty())
+          split_fields(line, row);
+          if (n_columns == 0)
             {
-              for (unsigned int c = 0; c < fields.size(); ++c)
+              for (unsigned int c = 0; c < row.size(); ++c)
                 {
-                  require(std::find(allowed.begin(), allowed.end(), fields[c]) != allowed.end() &&
-                            !table.column.count(fields[c]),
+                  const std::string name(row[c]);
+                  require(std::find(allowed.begin(), allowed.end(), name) != allowed.end() &&
+                            !columns.count(name),
                           parameter, file,
-                          "a header line naming each column once, from: " +
-                            join(allowed) + " (line " + std::to_string(number) +
-                            " has '" + fields[c] + "')");
-                  table.column[fields[c]] = c;
+                          "a header line naming each column once, from: " + join(allowed) +
+                            " (line " + std::to_string(number) + " has '" + name + "')");
+                  columns[name] = c;
                 }
               for (unsigned int c = 0; c < n_required; ++c)
-                require(table.column.count(allowed[c]) > 0, parameter, file,
+                require(columns.count(allowed[c]) > 0, parameter, file,
                         "a header line with the column '" + allowed[c] + "'");
+              n_columns = row.size();
               continue;
             }
-          require(fields.size() <= table.column.size(), parameter, file,
-                  "at most " + std::to_string(table.column.size()) + " fields per line (line " +
-                    std::to_string(number) + " has " + std::to_string(fields.size()) +
-                    "; expressions must not contain commas)");
-          table.rows.emplace_back(number, fields);
+          if (row.size() > n_columns)
+            require(false, parameter, file,
+                    "at most " + std::to_string(n_columns) + " fields per line (line " +
+                      std::to_string(number) + " has " + std::to_string(row.size()) +
+                      "; expressions must not contain commas)");
+          row.resize(n_columns);
+          fields.insert(fields.end(), row.begin(), row.end());
+          lines.push_back(number);
         }
-      require(!table.rows.empty(), parameter, file, "a header line and at least one row");
-      return table;
+      require(!lines.empty(), parameter, file, "a header line and at least one row");
     }
 
-    /// a required number of a CSV row
-    double
-    csv_number(const std::string &text, const std::string &where, const std::string &name)
+    /// "Network/graph file 'grid.csv', line 4: ", how messages place an
+    /// entry of a CSV file
+    std::string
+    file_line(const std::string &parameter, const std::string &file, const unsigned int line)
     {
-      const auto x = as_number(text);
-      require(x && std::isfinite(*x), where + name, text,
-              "a finite number of normal magnitude (0 or 2.2e-308 <= |x| <= 1.8e308)");
+      return parameter + " '" + file + "', line " + std::to_string(line) + ": ";
+    }
+
+    /// an integer id of a CSV file (of an edge or a vertex); where() names
+    /// the entry in the message (built only then: a large file has millions)
+    template <typename Where>
+    long
+    integer_id(const std::string_view text, const Where &where, const char *allowed)
+    {
+      const auto x = as_number(std::string(text));
+      if (!(x && *x == std::floor(*x) && std::abs(*x) < 1e15))
+        require(false, where(), text, allowed);
+      return static_cast<long>(*x);
+    }
+
+    /// a required number of a CSV file; where() names the entry
+    template <typename Where>
+    double
+    csv_number(const std::string_view text, const Where &where)
+    {
+      const auto x = as_number(std::string(text));
+      if (!(x && std::isfinite(*x)))
+        require(false, where(), text,
+                "a finite number of normal magnitude (0 or 2.2e-308 <= |x| <= 1.8e308)");
       return *x;
     }
 
@@ -460,104 +521,140 @@ namespace granular_dg::network
                       " has no free end)"));
   }
 
-  void
-  GraphInput::add_edge(Edge e, const FluxFunction &f, const std::string &at,
-                       const std::string &initial,
-                       const std::string &far_end_data, const std::string &initial_name,
-                       const std::string &far_end_name)
+  std::string
+  GraphInput::where(const unsigned int k) const
   {
+    return graph_file.empty() ? "Network/" + section("Edge", edge_origin[k]) + "/" :
+                                file_line("Network/graph file", graph_file, edge_origin[k]);
+  }
+
+  void
+  GraphInput::add_edge(Edge e, const FluxFunction &f, const unsigned int origin,
+                       const std::string_view initial, const std::string_view far_end_data,
+                       const char *initial_name, const char *far_end_name)
+  {
+    const unsigned int k = graph.edges.size();
+    edge_origin.push_back(origin);
     EdgeData d;
-    d.initial = make_data(initial, at + initial_name, false);
+    // (an edge with the initial data of the edge before shares its function)
+    if (k > 0 && initial == initial_text.back())
+      d.initial = data.back().initial;
+    else
+      d.initial = make_data(std::string(initial), where(k) + initial_name, false);
     if (e.far_end == FarEnd::dirichlet && (e.from == free_end || e.to == free_end))
       {
-        auto &f = far_end_functions[far_end_data];
-        if (!f)
-          f = make_data(far_end_data, at + far_end_name, true);
-        d.far_end = f;
+        auto &g = far_end_functions[std::string(far_end_data)];
+        if (!g)
+          g = make_data(std::string(far_end_data), where(k) + far_end_name, true);
+        d.far_end = g;
       }
     graph.edges.push_back(std::move(e));
     flux.push_back(f);
     data.push_back(d);
-    initial_text.push_back(initial);
-    far_end_text.push_back(far_end_data);
-    where.push_back(at);
+    initial_text.emplace_back(initial);
+    far_end_text.emplace_back(far_end_data);
   }
 
   void
   GraphInput::read_edge_file(const std::string &parameter, const std::string &file)
   {
-    const CsvTable table = read_csv(parameter, file,
-                                    {"id", "from", "to", "length", "flux", "parameter",
-                                     "initial", "far_end", "far_end_data"},
-                                    5);
-    graph.files.push_back({parameter, file, table.content_hash});
-    // vertex ids as written -> indices, in increasing order of the ids
-    std::map<long, unsigned int> index;
-    auto vertex_id = [&](const std::string &text, const std::string &where) -> long {
-      const auto x = as_number(text);
-      require(x && *x == std::floor(*x) && std::abs(*x) < 1e15, where, text,
-              "free, or an integer id");
-      return static_cast<long>(*x);
+    const CsvTable table(parameter, file,
+                         {"id", "from", "to", "length", "flux", "parameter", "initial", "far_end",
+                          "far_end_data"},
+                         5);
+    graph.files.push_back({parameter, file, table.content_hash()});
+    const unsigned int id_c = table.column("id"), from_c = table.column("from"),
+                       to_c = table.column("to"), length_c = table.column("length"),
+                       flux_c = table.column("flux"), parameter_c = table.column("parameter"),
+                       initial_c = table.column("initial"), far_end_c = table.column("far_end"),
+                       data_c = table.column("far_end_data");
+    const auto at = [&](const unsigned int r, const char *name) {
+      return file_line(parameter, file, table.line(r)) + name;
     };
-    for (const auto &[line, row] : table.rows)
-      for (const char *end : {"from", "to"})
+    // the vertex ids of the edges' ends as written (free, loop: none); the
+    // vertices are the ids named, in increasing order
+    constexpr long    none = std::numeric_limits<long>::min();
+    std::vector<long> end_ids(2 * std::size_t(table.n_rows()), none);
+    for (unsigned int r = 0; r < table.n_rows(); ++r)
+      for (const unsigned int side : {0u, 1u})
         {
-          const std::string v = table.get(row, end);
+          const std::string_view v = table.get(r, side == 0 ? from_c : to_c);
           if (v != "free" && v != "loop")
-            index[vertex_id(v, parameter + " '" + file + "', line " + std::to_string(line) +
-                                 ": " + end)] = 0;
+            end_ids[2 * r + side] = integer_id(
+              v, [&] { return at(r, side == 0 ? "from" : "to"); }, "free, or an integer id");
         }
-    unsigned int n = 0;
-    for (auto &[id, i] : index)
+    vertex_ids = end_ids;
+    std::sort(vertex_ids.begin(), vertex_ids.end());
+    vertex_ids.erase(std::unique(vertex_ids.begin(), vertex_ids.end()), vertex_ids.end());
+    if (!vertex_ids.empty() && vertex_ids.front() == none)
+      vertex_ids.erase(vertex_ids.begin());
+    for (const long id : vertex_ids)
       {
-        i = n++;
         Vertex v;
         v.label        = "Vertex " + std::to_string(id);
         v.width_factor = NAN;
         graph.vertices.push_back(v);
-        vertex_ids.push_back(id);
       }
-    std::map<long, unsigned int> edge_line;
-    for (const auto &[line, row] : table.rows)
+    std::unordered_map<long, unsigned int> line_of_edge;
+    line_of_edge.reserve(table.n_rows());
+    // (the flux of the row before, reused while the rows repeat its law and parameter)
+    std::optional<std::pair<std::string_view, std::string_view>> last_flux;
+    FluxFunction                                                 f;
+    for (unsigned int r = 0; r < table.n_rows(); ++r)
       {
-        const std::string at = parameter + " '" + file + "', line " + std::to_string(line) + ": ";
-        const long        id = vertex_id(table.get(row, "id"), at + "id");
-        const auto [first, unique] = edge_line.emplace(id, line);
-        require(unique, at + "id", id,
-                "a unique edge id (line " + std::to_string(first->second) + " has it too)");
+        const long id = integer_id(
+          table.get(r, id_c), [&] { return at(r, "id"); }, "an integer edge id");
+        const auto [first, unique] = line_of_edge.emplace(id, table.line(r));
+        if (!unique)
+          require(false, at(r, "id"), id,
+                  "a unique edge id (line " + std::to_string(first->second) + " has it too)");
         Edge e;
         e.label = "Edge " + std::to_string(id);
-        auto reference = [&](const char *end, const unsigned int from) {
-          const std::string v = table.get(row, end);
+        const auto end = [&](const unsigned int side, const unsigned int from) {
+          const std::string_view v = table.get(r, side == 0 ? from_c : to_c);
           if (v == "free")
             return free_end;
-          if (v == "loop" && std::string(end) == "to" && from != free_end)
+          if (v == "loop" && side == 1 && from != free_end)
             return from;
-          require(v != "loop", at + end, v, "loop only in 'to', after a from vertex");
-          return index.at(vertex_id(v, at + end));
+          if (v == "loop")
+            require(false, at(r, side == 0 ? "from" : "to"), v,
+                    "loop only in 'to', after a from vertex");
+          return unsigned(std::lower_bound(vertex_ids.begin(), vertex_ids.end(),
+                                           end_ids[2 * r + side]) -
+                          vertex_ids.begin());
         };
-        e.from = reference("from", free_end);
-        e.to   = reference("to", e.from);
-        require(e.from == free_end || e.to != e.from || table.get(row, "to") == "loop",
-                at + "to", table.get(row, "to"),
-                "a vertex other than from: write loop for a roundabout");
-        e.length = csv_number(table.get(row, "length"), at, "length");
-        require(e.length > 0, at + "length", table.get(row, "length"), "must be > 0");
-        const std::string law = table.get(row, "flux"), p = table.get(row, "parameter");
-        require(law != "burgers" || p.empty(), at + "parameter", p,
-                "empty for burgers (parameter: a of linear, alpha of traffic)");
-        const FluxFunction f =
-          make_flux(law, p.empty() ? 1. : csv_number(p, at, "parameter"), at, "parameter");
-        const std::string far = table.get(row, "far_end");
-        e.far_end = far.empty() ? FarEnd::outflow : far_end_names.parse(at + "far_end", far);
-        const std::string initial = table.get(row, "initial");
-        const std::string g       = table.get(row, "far_end_data");
-        require_far_end_used(e, at + "far_end", far, !far.empty(), at + "far_end_data", g,
-                             !g.empty());
-        require(!g.empty() || e.far_end != FarEnd::dirichlet, at + "far_end_data", g,
-                "the inflow state of the dirichlet end (a number or an expression in t)");
-        add_edge(e, f, at, initial.empty() ? "0" : initial, g.empty() ? "0" : g, "initial",
-                 "far_end_data");
+        e.from                  = end(0, free_end);
+        e.to                    = end(1, e.from);
+        const std::string_view to = table.get(r, to_c);
+        if (e.from != free_end && e.to == e.from && to != "loop")
+          require(false, at(r, "to"), to, "a vertex other than from: write loop for a roundabout");
+        const std::string_view length = table.get(r, length_c);
+        e.length = csv_number(length, [&] { return at(r, "length"); });
+        if (!(e.length > 0))
+          require(false, at(r, "length"), length, "must be > 0");
+        const std::string_view law = table.get(r, flux_c), p = table.get(r, parameter_c);
+        if (law == "burgers" && !p.empty())
+          require(false, at(r, "parameter"), p,
+                  "empty for burgers (parameter: a of linear, alpha of traffic)");
+        if (last_flux != std::pair(law, p))
+          {
+            f = make_flux(std::string(law),
+                          p.empty() ? 1. : csv_number(p, [&] { return at(r, "parameter"); }),
+                          at(r, ""), "parameter");
+            last_flux = std::pair(law, p);
+          }
+        const std::string_view far = table.get(r, far_end_c), g = table.get(r, data_c);
+        e.far_end = far.empty() ? FarEnd::outflow :
+                                  far_end_names.parse(at(r, "far_end"), std::string(far));
+        if (!far.empty() || !g.empty())
+          require_far_end_used(e, at(r, "far_end"), std::string(far), !far.empty(),
+                               at(r, "far_end_data"), std::string(g), !g.empty());
+        if (g.empty() && e.far_end == FarEnd::dirichlet)
+          require(false, at(r, "far_end_data"), g,
+                  "the inflow state of the dirichlet end (a number or an expression in t)");
+        const std::string_view initial = table.get(r, initial_c);
+        add_edge(e, f, table.line(r), initial.empty() ? "0" : initial, g.empty() ? "0" : g,
+                 "initial", "far_end_data");
       }
   }
 
@@ -565,49 +662,52 @@ namespace granular_dg::network
   GraphInput::read_vertex_file(const std::string &parameter, const std::string &file,
                                const std::string &edges)
   {
-    const CsvTable table =
-      read_csv(parameter, file, {"id", "x", "y", "width_factor", "initial_value"}, 3);
-    graph.files.push_back({parameter, file, table.content_hash});
-    std::map<long, unsigned int> index;
-    for (unsigned int i = 0; i < vertex_ids.size(); ++i)
-      index[vertex_ids[i]] = i;
-    std::map<long, unsigned int> seen;
+    const CsvTable table(parameter, file, {"id", "x", "y", "width_factor", "initial_value"}, 3);
+    graph.files.push_back({parameter, file, table.content_hash()});
+    const unsigned int id_c = table.column("id"), x_c = table.column("x"),
+                       y_c = table.column("y"), width_c = table.column("width_factor"),
+                       value_c = table.column("initial_value");
+    // per vertex: the line that lists it (0: none yet)
+    std::vector<unsigned int> listed(graph.vertices.size(), 0);
     value_given.assign(graph.vertices.size(), "");
-    for (const auto &[line, row] : table.rows)
+    for (unsigned int r = 0; r < table.n_rows(); ++r)
       {
-        const std::string at = parameter + " '" + file + "', line " + std::to_string(line) + ": ";
-        const std::string text = table.get(row, "id");
-        const auto        x    = as_number(text);
-        require(x && *x == std::floor(*x) && std::abs(*x) < 1e15, at + "id", text,
-                "an integer vertex id");
-        const long id = static_cast<long>(*x);
-        const auto [first, unique] = seen.emplace(id, line);
-        require(unique, at + "id", id,
-                "a unique vertex id (line " + std::to_string(first->second) + " has it too)");
-        const auto it = index.find(id);
-        require(it != index.end(), at + "id", id,
-                "a vertex that an edge of " + edges + " names (Vertex " + std::to_string(id) +
-                  " has no edges; every vertex needs at least one)");
-        Vertex &v  = graph.vertices[it->second];
-        v.position = Point<2>(csv_number(table.get(row, "x"), at, "x"),
-                              csv_number(table.get(row, "y"), at, "y"));
-        const std::string w = table.get(row, "width_factor"), u0 = table.get(row, "initial_value");
+        const auto at = [&](const char *name) {
+          return file_line(parameter, file, table.line(r)) + name;
+        };
+        const long id = integer_id(
+          table.get(r, id_c), [&] { return at("id"); }, "an integer vertex id");
+        const auto         it = std::lower_bound(vertex_ids.begin(), vertex_ids.end(), id);
+        const unsigned int i  = it - vertex_ids.begin();
+        if (it == vertex_ids.end() || *it != id)
+          require(false, at("id"), id,
+                  "a vertex that an edge of " + edges + " names (Vertex " + std::to_string(id) +
+                    " has no edges; every vertex needs at least one)");
+        if (listed[i] != 0)
+          require(false, at("id"), id,
+                  "a unique vertex id (line " + std::to_string(listed[i]) + " has it too)");
+        listed[i]       = table.line(r);
+        Vertex      &v  = graph.vertices[i];
+        const double x  = csv_number(table.get(r, x_c), [&] { return at("x"); });
+        v.position      = Point<2>(x, csv_number(table.get(r, y_c), [&] { return at("y"); }));
+        const std::string_view w = table.get(r, width_c), u0 = table.get(r, value_c);
         if (!w.empty())
           {
-            v.width_factor = csv_number(w, at, "width_factor");
-            require(v.width_factor >= 0, at + "width_factor", w, "a number >= 0");
+            v.width_factor = csv_number(w, [&] { return at("width_factor"); });
+            if (!(v.width_factor >= 0))
+              require(false, at("width_factor"), w, "a number >= 0");
           }
         if (!u0.empty())
           {
-            v.initial_value         = vertex_value(u0, at + "initial_value");
-            value_given[it->second] = at + "initial_value";
+            v.initial_value = vertex_value(std::string(u0), at("initial_value"));
+            value_given[i]  = at("initial_value");
           }
       }
     // every vertex an edge names must be listed
     for (unsigned int k = 0; k < graph.edges.size(); ++k)
       for (const unsigned int v : {graph.edges[k].from, graph.edges[k].to})
-        if (v != free_end && !seen.count(vertex_ids[v]))
-          throw InputError(where[k] + graph.edges[k].label + " names " + graph.vertices[v].label +
+        if (v != free_end && listed[v] == 0)
+          throw InputError(where(k) + graph.edges[k].label + " names " + graph.vertices[v].label +
                            ", which " + parameter + " '" + file + "' does not list");
   }
 
@@ -677,7 +777,7 @@ namespace granular_dg::network
         require_far_end_used(e, at + "far end", given.far_end,
                              !parameter_origin(at + "far end").empty(), at + "far end data",
                              given.far_end_data, !parameter_origin(at + "far end data").empty());
-        add_edge(e, f, at, given.initial_data, given.far_end_data, "initial data", "far end data");
+        add_edge(e, f, i, given.initial_data, given.far_end_data, "initial data", "far end data");
       }
     require(!graph.edges.empty(), "Network/Edge 1/direction", "none",
             "in, out or loop (or from/to) for at least one Network/Edge N");

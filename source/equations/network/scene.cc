@@ -129,7 +129,7 @@ namespace granular_dg::network
           const Edge         &e    = graph.edges[k];
           const FluxFunction &f    = c.input.flux[k];
           const auto         &want = ex.edges[k];
-          const std::string  &sec  = c.input.where[k];
+          const std::string   sec  = c.input.where(k);
           const std::string   why  = ", as " + ex.name + " expects (or set Network/exact solution = none)";
           // (named by the entry the user set: direction, else from or to)
           const auto label = [&](const unsigned int v) {
@@ -305,7 +305,7 @@ namespace granular_dg::network
         return;
       const Edge  &e = graph.edges[narrowest];
       const double h = e.length / n[narrowest];
-      std::cerr << "granular_dg: warning: " << e.label << " (" << c.input.where[narrowest]
+      std::cerr << "granular_dg: warning: " << e.label << " (" << c.input.where(narrowest)
                 << "length = " << format_number(e.length) << ") has cells of width "
                 << format_number(h) << ", " << format_number(dx / h)
                 << " times narrower than 1/(Network/cells per unit length) = "

@@ -9,6 +9,7 @@
 #include <map>
 #include <memory>
 #include <string>
+#include <string_view>
 #include <vector>
 
 namespace granular_dg
@@ -68,10 +69,12 @@ namespace granular_dg::network
     /// per edge: its flux law and its data
     std::vector<FluxFunction> flux;
     std::vector<EdgeData>     data;
-    /// per edge: its initial and far-end data as written, and where it was
-    /// given ("Network/Edge 3/" or "Network/graph file 'grid.csv', line 4: ")
+    /// per edge: its initial and far-end data as written
     std::vector<std::string> initial_text, far_end_text;
-    std::vector<std::string> where;
+    /// where edge k was given: "Network/Edge 3/" or "Network/graph file
+    /// 'grid.csv', line 4: "
+    std::string
+    where(unsigned int k) const;
 
     /// The graph's entries, each with its field, pattern and documentation
     /// (ParameterBinding); once read, the graph and its data built from them.
@@ -95,11 +98,13 @@ namespace granular_dg::network
                          bool far_end_given, const std::string &data_name, const std::string &data,
                          bool data_given) const;
     /// e with its flux law f and its data (numbers become constants, else
-    /// expressions; the names are the data's parameters in messages)
+    /// expressions; the names are the data's parameters in messages), given
+    /// in Edge N section origin (0-based) or at line origin of the graph file
     void
-    add_edge(Edge e, const FluxFunction &f, const std::string &where, const std::string &initial,
-             const std::string &far_end_data, const std::string &initial_name,
-             const std::string &far_end_name);
+    add_edge(Edge e, const FluxFunction &f, unsigned int origin, std::string_view initial,
+             std::string_view far_end_data, const char *initial_name, const char *far_end_name);
+    /// per edge: add_edge()'s origin
+    std::vector<unsigned int> edge_origin;
     /// the far-end data by their text: edges with the same data share one
     /// function (a stage evaluates each once, NetworkProblem::set_end_states)
     std::map<std::string, std::shared_ptr<Function<1>>> far_end_functions;
@@ -107,6 +112,7 @@ namespace granular_dg::network
     /// default, Network/vertex initial value)
     std::vector<std::string> value_given;
     /// the graph file's vertex ids, in the order of graph.vertices
+    /// (increasing)
     std::vector<long> vertex_ids;
     void
     read_edge_file(const std::string &parameter, const std::string &file);
