@@ -260,6 +260,18 @@ granular_dg_test(network/graph_irregular PRM network/ring.prm
        --set "Time stepping/final time=1" --set "Output/output times=1"
   COMPARE summary.json:n_cells,diagnostics/n_vertices,diagnostics/vertex_values_final
   NUMDIFF -r 1e-12 -a 0)
+# Network/edge profiles = auto (the default): one CSV file per edge and
+# snapshot for a graph of up to 100 edges (chain100.csv: the last edge's
+# profile is written), none for a larger one (chain101.csv: the VTU only).
+granular_dg_test(network/profiles_auto_100 PRM network/ring.prm COPY network/chain100.csv
+  ARGS --set "Network/graph file=chain100.csv" --set "Network/vertex file="
+       --set "Time stepping/final time=0.5" --set "Output/output times=0.5"
+  COMPARE profile-0001-edge-100.csv NUMDIFF -a 1e-12)
+granular_dg_test(network/profiles_auto_101 PRM network/ring.prm COPY network/chain101.csv
+  ARGS --set "Network/graph file=chain101.csv" --set "Network/vertex file="
+       --set "Time stepping/final time=0.5" --set "Output/output times=0.5"
+  COMPARE summary.json:n_cells
+  ABSENT_FILES out/profile-0001-edge-1.csv out/profile-0001-edge-101.csv out/profile-0001.csv)
 granular_dg_test(network/graph_file_and_vertex_section PRM network/ring.prm ${ring_files}
   ARGS --set "Network/Vertex 2/width factor=0" EXIT 2 KEEP_OUTPUT)
 # An Edge N entry beside a graph file would be ignored (the file's length

@@ -32,6 +32,9 @@ namespace granular_dg::network
     const EnumNames<Profiles>   profile_names({{Profiles::per_edge, "per_edge"},
                                                {Profiles::one_file, "one_file"},
                                                {Profiles::none, "none"}});
+    /// Network/edge profiles = auto: one CSV file per edge and snapshot for
+    /// a graph of up to this many edges, none for a larger one
+    constexpr std::size_t       most_edges_with_profiles = 100;
     const EnumNames<Integrator> integrator_names({{Integrator::automatic, "auto"},
                                                   {Integrator::forward_euler, "forward_euler"},
                                                   {Integrator::ssprk3, "ssprk3"}});
@@ -60,6 +63,9 @@ namespace granular_dg::network
       NetworkOptions                 options;
       std::string                    exact_name = "none";
       std::shared_ptr<ExactSolution> exact;
+      /// Network/edge profiles as given: auto or one of profile_names
+      /// (options.profiles once the graph is read)
+      std::string                    profiles = "auto";
 
       /// the physics of every edge: its flux law with the numerical flux
       std::vector<EdgeLaw>
@@ -365,10 +371,13 @@ namespace granular_dg::network
       b.add("cells per unit length", options.cells_per_unit_length, Patterns::Integer(1),
             "Cells per unit length of edge: the paper's grid level l is 2^l (dx = 2^-l); an "
             "edge of length L gets round(L * this) cells.");
-      b.add("edge profiles", options.profiles, profile_names,
+      b.add("edge profiles", profiles,
+            Patterns::Selection("auto|" + profile_names.selection()),
             "What a snapshot writes besides solution-NNNN.vtu: per_edge "
             "(profile-NNNN-edge-K.csv, one file per edge), one_file (profile-NNNN.csv with an "
-            "edge column: for large networks) or none.");
+            "edge column), none, or auto: per_edge for a graph of up to " +
+              std::to_string(most_edges_with_profiles) +
+              " edges, none for a larger one (its VTU holds every edge).");
       b.add("exact solution", exact_name, Patterns::Selection(exact_choices()),
             "Exact solution for the error measurement (L1 over all edges and the vertex cell): "
             "none, initial_data (the data are a stationary state), example_7_1 ... "
@@ -392,6 +401,10 @@ namespace granular_dg::network
       input.bind(b);
       if (!b.reading())
         return;
+      options.profiles =
+        profiles != "auto" ? profile_names.parse("Network/edge profiles", profiles) :
+        input.graph.edges.size() <= most_edges_with_profiles ? Profiles::per_edge :
+                                                               Profiles::none;
       // before any edge is discretised (below for initial_data, then by run())
       require_network_fits(*this, common);
       build_exact_solution(common);
@@ -465,6 +478,11 @@ namespace granular_dg::network
                                                         common.convergence_cells.end())) :
                                c.options.cells_per_unit_length);
       warn_of_narrow_vertices(c, common);
+      if (c.profiles == "auto" && c.options.profiles == Profiles::none &&
+          Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) == 0)
+        std::cout << "  no edge profiles: Network/edge profiles = auto writes them for up to "
+                  << most_edges_with_profiles << " edges (per_edge or one_file to have them)"
+                  << std::endl;
       {
         const auto    n     = edge_cells(c.input.graph, c.options.cells_per_unit_length);
         unsigned long cells = 0;
