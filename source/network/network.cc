@@ -34,35 +34,7 @@ namespace granular_dg::network
       return ((x[0] + x[1]) + (x[2] + x[3])) + ((x[4] + x[5]) + (x[6] + x[7]));
     }
 
-#if DEAL_II_VECTORIZATION_WIDTH_IN_BITS >= 512 && defined(__AVX512F__)
-    /// edge_sums() below at stride 1 (degree 0), the partial sums in the
-    /// lanes of one register each: the same additions in the same order, so
-    /// the same result to the bit. Masked loads end the edge.
-    DEAL_II_ALWAYS_INLINE inline std::array<double, 2>
-    contiguous_edge_sums(const double *mean, const unsigned int n)
-    {
-      // the first k of the 8 lanes
-      const auto first = [](const unsigned int k) {
-        return __mmask8(k >= 8 ? 0xff : (1u << k) - 1);
-      };
-      const __m512d sign = _mm512_set1_pd(-0.);
-      __m512d       sum = _mm512_setzero_pd(), tv = _mm512_setzero_pd();
-      for (unsigned int c = 0; c < n; c += 8)
-        {
-          // lane l: cell c + l and the jump from it to c + l + 1
-          const __mmask8 cells = first(n - c), jumps = first(n - c - 1);
-          const __m512d  x     = _mm512_maskz_loadu_pd(cells, mean + c);
-          const __m512d  next  = _mm512_maskz_loadu_pd(jumps, mean + c + 1);
-          sum = _mm512_mask_add_pd(sum, cells, sum, x);
-          tv  = _mm512_mask_add_pd(tv, jumps, tv, _mm512_andnot_pd(sign, _mm512_sub_pd(next, x)));
-        }
-      double s[8], t[8];
-      _mm512_storeu_pd(s, sum);
-      _mm512_storeu_pd(t, tv);
-      return {{pairwise_sum(s), pairwise_sum(t)}};
-    }
-#elif defined(__AVX__)
-#  define GRANULAR_DG_CONTIGUOUS_EDGE_SUMS
+#if defined(__AVX__)
     /// pairwise_sum() of the lanes of lo (x[0..3]) and hi (x[4..7]), for two
     /// such pairs at once: the same additions, in registers
     __m128d
@@ -124,8 +96,7 @@ namespace granular_dg::network
     DEAL_II_ALWAYS_INLINE inline std::array<double, 2>
     edge_sums(const double *mean, const unsigned int stride, const unsigned int n)
     {
-#if (DEAL_II_VECTORIZATION_WIDTH_IN_BITS >= 512 && defined(__AVX512F__)) || \
-  defined(GRANULAR_DG_CONTIGUOUS_EDGE_SUMS)
+#if defined(__AVX__)
       if (stride == 1)
         return contiguous_edge_sums(mean, n);
 #endif

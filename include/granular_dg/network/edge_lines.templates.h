@@ -16,6 +16,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <map>
 
 namespace granular_dg::network
 {
@@ -71,16 +72,17 @@ namespace granular_dg::network
     first.assign(1, 0);
     for (const unsigned int n : cells)
       first.push_back(first.back() + n);
+    std::map<double, unsigned int> index_of_size;
     for (const double size : h)
       {
         inverse_h.push_back(1. / size);
-        auto at = std::find(distinct_h.begin(), distinct_h.end(), size);
-        if (at == distinct_h.end() && distinct_h.size() <= max_sizes)
-          at = distinct_h.insert(distinct_h.end(), size);
-        size_of_edge.push_back(at - distinct_h.begin());
+        const auto [at, fresh] = index_of_size.emplace(size, distinct_h.size());
+        if (fresh)
+          distinct_h.push_back(size);
+        size_of_edge.push_back(at->second);
       }
-    if (distinct_h.size() > max_sizes)
-      distinct_h.clear(), size_of_edge.clear();
+    size_lanes.resize(distinct_h.size());
+    size_rest.resize(distinct_h.size());
 
     const QGauss<1> q(modes + 1);
     n_q = q.size();
@@ -396,44 +398,28 @@ namespace granular_dg::network
   EdgeLines<Law>::max_speed_over_h(const double *u, const double *vertex_values) const
   {
     return dg::with_n_modes(modes, [&](auto nm) {
+      // the largest speeds of the edges of each size, then divided once per
+      // size; in registers along a run of edges of one size (through memory
+      // a dependency from each edge to the next)
+      std::fill(size_lanes.begin(), size_lanes.end(), VA(0.));
+      std::fill(size_rest.begin(), size_rest.end(), 0.);
+      for (unsigned int e = 0; e < n_edges();)
+        {
+          const unsigned int s         = size_of_edge[e];
+          VA                 run_lanes = size_lanes[s];
+          double             run_rest  = size_rest[s];
+          for (; e < n_edges() && size_of_edge[e] == s; ++e)
+            max_speed_edge<decltype(nm)::value>(u, vertex_values, e, run_lanes, run_rest);
+          size_lanes[s] = run_lanes;
+          size_rest[s]  = run_rest;
+        }
       // (the largest over the lanes once at the end: max is exact in any order)
       VA     lanes  = 0.;
       double result = 0;
-      if (distinct_h.empty())
-        for (unsigned int e = 0; e < n_edges(); ++e)
-          {
-            VA     edge_lanes = 0.;
-            double rest       = 0.;
-            max_speed_edge<decltype(nm)::value>(u, vertex_values, e, edge_lanes, rest);
-            // (an edge of fewer than W cells has no batch: nothing to divide)
-            if (W > 1 && cells[e] >= W)
-              lanes = std::max(lanes, edge_lanes / VA(h[e]));
-            result = std::max(result, rest / h[e]);
-          }
-      else
+      for (unsigned int s = 0; s < distinct_h.size(); ++s)
         {
-          // the largest speeds of the edges of each size, then divided; in
-          // registers along a run of edges of one size (through memory a
-          // dependency from each edge to the next)
-          std::array<VA, max_sizes>     size_lanes;
-          std::array<double, max_sizes> size_rest{};
-          for (auto &l : size_lanes)
-            l = 0.;
-          for (unsigned int e = 0; e < n_edges();)
-            {
-              const unsigned int s = size_of_edge[e];
-              VA                 run_lanes = size_lanes[s];
-              double             run_rest  = size_rest[s];
-              for (; e < n_edges() && size_of_edge[e] == s; ++e)
-                max_speed_edge<decltype(nm)::value>(u, vertex_values, e, run_lanes, run_rest);
-              size_lanes[s] = run_lanes;
-              size_rest[s]  = run_rest;
-            }
-          for (unsigned int s = 0; s < distinct_h.size(); ++s)
-            {
-              lanes  = std::max(lanes, size_lanes[s] / VA(distinct_h[s]));
-              result = std::max(result, size_rest[s] / distinct_h[s]);
-            }
+          lanes  = std::max(lanes, size_lanes[s] / VA(distinct_h[s]));
+          result = std::max(result, size_rest[s] / distinct_h[s]);
         }
       for (unsigned int l = 0; l < W; ++l)
         result = std::max(result, lanes[l]);
