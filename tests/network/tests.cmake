@@ -249,6 +249,14 @@ granular_dg_test(network/graph_bom PRM network/ring.prm
        --set "Time stepping/final time=1" --set "Output/output times=1"
   COMPARE summary.json:n_cells,diagnostics/n_vertices,diagnostics/vertex_values_final
   NUMDIFF -r 1e-12 -a 0)
+# Graph and vertex files with the line ends of an old Mac (CR alone, as
+# "CSV (Macintosh)" saves them) read as the plain ring, as graph_bom.
+granular_dg_test(network/graph_cr PRM network/ring.prm
+  COPY network/ring_cr.csv network/ring_vertices_cr.csv
+  ARGS --set "Network/graph file=ring_cr.csv" --set "Network/vertex file=ring_vertices_cr.csv"
+       --set "Time stepping/final time=1" --set "Output/output times=1"
+  COMPARE summary.json:n_cells,diagnostics/n_vertices,diagnostics/vertex_values_final
+  NUMDIFF -r 1e-12 -a 0)
 # Graph and vertex files written loosely (columns in another order, vertex
 # ids 10, 20, 30 and vertex rows out of order, blanks and a tab around
 # fields, blank and indented comment lines between rows, empty last fields,

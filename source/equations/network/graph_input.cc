@@ -253,13 +253,14 @@ namespace granular_dg::network
       text.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
       hash = fnv1a(text);
       const std::string_view all(text);
-      // a spreadsheet's "CSV UTF-8" starts with a byte-order mark (and
-      // trim() takes the \r of CRLF line ends)
+      // a spreadsheet's "CSV UTF-8" starts with a byte-order mark; lines end
+      // in \n, \r\n (trim() takes the \r) or, from an old Mac, \r alone
       std::size_t                   start = all.rfind("\xEF\xBB\xBF", 0) == 0 ? 3 : 0;
+      const char                    eol   = all.find('\n') == all.npos ? '\r' : '\n';
       std::vector<std::string_view> row;
       for (unsigned int number = 1; start < all.size(); ++number)
         {
-          const auto             end  = std::min(all.find('\n', start), all.size());
+          const auto             end  = std::min(all.find(eol, start), all.size());
           const std::string_view line = all.substr(start, end - start);
           start                       = end + 1;
           if (trim(line).empty() || trim(line)[0] == '#')
