@@ -240,34 +240,25 @@ endforeach()
 # /dev/zero, or a directory) is refused instead of read.
 granular_dg_test(network/graph_not_a_file PRM network/ring.prm
   ARGS --set "Network/graph file=/dev/zero" EXIT 2 KEEP_OUTPUT)
-# Graph and vertex files saved as "CSV UTF-8" (a byte-order mark, CRLF line
-# ends, no comment line) read as the plain ring: the run completes with the
-# ring's cells, vertices and final vertex values (1e-12 relative).
-granular_dg_test(network/graph_bom PRM network/ring.prm
-  COPY network/ring_bom.csv network/ring_vertices_bom.csv
-  ARGS --set "Network/graph file=ring_bom.csv" --set "Network/vertex file=ring_vertices_bom.csv"
-       --set "Time stepping/final time=1" --set "Output/output times=1"
-  COMPARE summary.json:n_cells,diagnostics/n_vertices,diagnostics/vertex_values_final
-  NUMDIFF -r 1e-12 -a 0)
-# Graph and vertex files with the line ends of an old Mac (CR alone, as
-# "CSV (Macintosh)" saves them) read as the plain ring, as graph_bom.
-granular_dg_test(network/graph_cr PRM network/ring.prm
-  COPY network/ring_cr.csv network/ring_vertices_cr.csv
-  ARGS --set "Network/graph file=ring_cr.csv" --set "Network/vertex file=ring_vertices_cr.csv"
-       --set "Time stepping/final time=1" --set "Output/output times=1"
-  COMPARE summary.json:n_cells,diagnostics/n_vertices,diagnostics/vertex_values_final
-  NUMDIFF -r 1e-12 -a 0)
-# Graph and vertex files written loosely (columns in another order, vertex
-# ids 10, 20, 30 and vertex rows out of order, blanks and a tab around
-# fields, blank and indented comment lines between rows, empty last fields,
-# no line end after the last row) read as the plain ring, as graph_bom.
-granular_dg_test(network/graph_irregular PRM network/ring.prm
-  COPY network/ring_irregular.csv network/ring_vertices_irregular.csv
-  ARGS --set "Network/graph file=ring_irregular.csv"
-       --set "Network/vertex file=ring_vertices_irregular.csv"
-       --set "Time stepping/final time=1" --set "Output/output times=1"
-  COMPARE summary.json:n_cells,diagnostics/n_vertices,diagnostics/vertex_values_final
-  NUMDIFF -r 1e-12 -a 0)
+# Graph and vertex files written as users' tools write them read as the
+# plain ring: the run completes with the ring's cells, vertices and final
+# vertex values (1e-12 relative; the three outputs are the same file).
+#   bom: saved as "CSV UTF-8" (a byte-order mark, CRLF line ends, no
+#        comment line);
+#   cr: the line ends of an old Mac (CR alone, "CSV (Macintosh)");
+#   irregular: columns in another order, vertex ids 10, 20, 30 and vertex
+#        rows out of order, blanks and a tab around fields, blank and
+#        indented comment lines between rows, empty last fields, no line end
+#        after the last row.
+foreach(form bom cr irregular)
+  granular_dg_test(network/graph_${form} PRM network/ring.prm
+    COPY network/ring_${form}.csv network/ring_vertices_${form}.csv
+    ARGS --set "Network/graph file=ring_${form}.csv"
+         --set "Network/vertex file=ring_vertices_${form}.csv"
+         --set "Time stepping/final time=1" --set "Output/output times=1"
+    COMPARE summary.json:n_cells,diagnostics/n_vertices,diagnostics/vertex_values_final
+    NUMDIFF -r 1e-12 -a 0)
+endforeach()
 # Network/edge profiles = auto (the default): one CSV file per edge and
 # snapshot for a graph of up to 100 edges (chain100.csv: the last edge's
 # profile is written), none for a larger one (chain101.csv: the VTU only).
