@@ -316,6 +316,29 @@ namespace granular_dg::network
       return static_cast<long>(*x);
     }
 
+    /// end_vertex_ids()' entry for an end that names no vertex
+    constexpr long no_vertex = std::numeric_limits<long>::min();
+
+    /// The vertex ids of the ends of a graph file's edges, as written (row r:
+    /// entries 2 r and 2 r + 1), each checked; free and loop: no_vertex.
+    /// at(r, name) names the entry of row r in a message.
+    template <typename At>
+    std::vector<long>
+    end_vertex_ids(const CsvTable &table, const unsigned int from_c, const unsigned int to_c,
+                   const At &at)
+    {
+      std::vector<long> ids(2 * std::size_t(table.n_rows()), no_vertex);
+      for (unsigned int r = 0; r < table.n_rows(); ++r)
+        for (const unsigned int side : {0u, 1u})
+          {
+            const std::string_view v = table.get(r, side == 0 ? from_c : to_c);
+            if (v != "free" && v != "loop")
+              ids[2 * r + side] = integer_id(
+                v, [&] { return at(r, side == 0 ? "from" : "to"); }, "free, or an integer id");
+          }
+      return ids;
+    }
+
     /// a required number of a CSV file; where() names the entry
     template <typename Where>
     double
@@ -572,22 +595,12 @@ namespace granular_dg::network
     const auto at = [&](const unsigned int r, const char *name) {
       return file_line(parameter, file, table.line(r)) + name;
     };
-    // the vertex ids of the edges' ends as written (free, loop: none); the
-    // vertices are the ids named, in increasing order
-    constexpr long    none = std::numeric_limits<long>::min();
-    std::vector<long> end_ids(2 * std::size_t(table.n_rows()), none);
-    for (unsigned int r = 0; r < table.n_rows(); ++r)
-      for (const unsigned int side : {0u, 1u})
-        {
-          const std::string_view v = table.get(r, side == 0 ? from_c : to_c);
-          if (v != "free" && v != "loop")
-            end_ids[2 * r + side] = integer_id(
-              v, [&] { return at(r, side == 0 ? "from" : "to"); }, "free, or an integer id");
-        }
-    vertex_ids = end_ids;
+    // the vertices: the ids the edges' ends name, in increasing order
+    const std::vector<long> end_ids = end_vertex_ids(table, from_c, to_c, at);
+    vertex_ids                      = end_ids;
     std::sort(vertex_ids.begin(), vertex_ids.end());
     vertex_ids.erase(std::unique(vertex_ids.begin(), vertex_ids.end()), vertex_ids.end());
-    if (!vertex_ids.empty() && vertex_ids.front() == none)
+    if (!vertex_ids.empty() && vertex_ids.front() == no_vertex)
       vertex_ids.erase(vertex_ids.begin());
     for (const long id : vertex_ids)
       {
