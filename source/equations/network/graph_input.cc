@@ -440,8 +440,8 @@ namespace granular_dg::network
           "vertex id or free; to may be loop; parameter: a of linear, alpha of traffic (empty: "
           "1), empty for burgers; "
           "initial: a number or an expression in x without commas; far_end: dirichlet or "
-          "outflow; far_end_data: a number or an expression in t). Lines starting with # are "
-          "comments.");
+          "outflow; far_end_data: a number or an expression in t). The columns may come in "
+          "any order; lines starting with # are comments.");
     b.add("vertex file", vertex_file, Patterns::Anything(),
           "With a graph file: a CSV vertex list, id,x,y[,width_factor[,initial_value]] "
           "(positions for the drawing; width factor and initial value as in Vertex N). Without "
