@@ -1,6 +1,5 @@
 #pragma once
 
-#include <deal.II/base/aligned_vector.h>
 #include <deal.II/base/polynomial.h>
 #include <deal.II/base/vectorization.h>
 
@@ -188,14 +187,6 @@ namespace granular_dg::network
     /// first[e]: the cells before edge e (first[n_edges]: all)
     std::vector<std::size_t>  first;
     std::vector<double>       h, inverse_h;
-    /// the distinct cell sizes and the one of each edge: max_speed_over_h()
-    /// divides once per size, not per edge (a division by h > 0 is
-    /// monotone: the same maximum to the bit), the largest speeds of each
-    /// size gathered in size_lanes and size_rest
-    std::vector<double>               distinct_h;
-    std::vector<unsigned int>         size_of_edge;
-    mutable AlignedVector<VA>         size_lanes;
-    mutable std::vector<double>       size_rest;
     std::vector<EndKind>      end_kind;
     std::vector<double>       outer;
     /// boundary_flux(): 2 per edge, written by stage()

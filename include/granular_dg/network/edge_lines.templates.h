@@ -16,7 +16,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <map>
 
 namespace granular_dg::network
 {
@@ -72,17 +71,8 @@ namespace granular_dg::network
     first.assign(1, 0);
     for (const unsigned int n : cells)
       first.push_back(first.back() + n);
-    std::map<double, unsigned int> index_of_size;
     for (const double size : h)
-      {
-        inverse_h.push_back(1. / size);
-        const auto [at, fresh] = index_of_size.emplace(size, distinct_h.size());
-        if (fresh)
-          distinct_h.push_back(size);
-        size_of_edge.push_back(at->second);
-      }
-    size_lanes.resize(distinct_h.size());
-    size_rest.resize(distinct_h.size());
+      inverse_h.push_back(1. / size);
 
     const QGauss<1> q(modes + 1);
     n_q = q.size();
@@ -398,28 +388,21 @@ namespace granular_dg::network
   EdgeLines<Law>::max_speed_over_h(const double *u, const double *vertex_values) const
   {
     return dg::with_n_modes(modes, [&](auto nm) {
-      // the largest speeds of the edges of each size, then divided once per
-      // size; in registers along a run of edges of one size (through memory
-      // a dependency from each edge to the next)
-      std::fill(size_lanes.begin(), size_lanes.end(), VA(0.));
-      std::fill(size_rest.begin(), size_rest.end(), 0.);
-      for (unsigned int e = 0; e < n_edges();)
-        {
-          const unsigned int s         = size_of_edge[e];
-          VA                 run_lanes = size_lanes[s];
-          double             run_rest  = size_rest[s];
-          for (; e < n_edges() && size_of_edge[e] == s; ++e)
-            max_speed_edge<decltype(nm)::value>(u, vertex_values, e, run_lanes, run_rest);
-          size_lanes[s] = run_lanes;
-          size_rest[s]  = run_rest;
-        }
       // (the largest over the lanes once at the end: max is exact in any order)
       VA     lanes  = 0.;
       double result = 0;
-      for (unsigned int s = 0; s < distinct_h.size(); ++s)
+      for (unsigned int e = 0; e < n_edges();)
         {
-          lanes  = std::max(lanes, size_lanes[s] / VA(distinct_h[s]));
-          result = std::max(result, size_rest[s] / distinct_h[s]);
+          // a run of edges of one cell size (the whole city grid): their
+          // largest speeds in registers, divided once (a division by h > 0
+          // is monotone: the same maximum to the bit as dividing each)
+          const double size      = h[e];
+          VA           run_lanes = 0.;
+          double       run_rest  = 0.;
+          for (; e < n_edges() && h[e] == size; ++e)
+            max_speed_edge<decltype(nm)::value>(u, vertex_values, e, run_lanes, run_rest);
+          lanes  = std::max(lanes, run_lanes / VA(size));
+          result = std::max(result, run_rest / size);
         }
       for (unsigned int l = 0; l < W; ++l)
         result = std::max(result, lanes[l]);
