@@ -15,6 +15,8 @@
 #include <regex>
 #include <sstream>
 
+#include <sched.h>
+
 namespace granular_dg
 {
   std::vector<double>
@@ -269,6 +271,12 @@ namespace granular_dg
         break;
     if (key != "MemAvailable:")
       return 0.;
+    return 1024. * kb / ranks_on_this_machine();
+  }
+
+  unsigned int
+  ranks_on_this_machine()
+  {
     int ranks_here = 1;
     if (Utilities::MPI::job_supports_mpi())
       {
@@ -277,7 +285,15 @@ namespace granular_dg
         MPI_Comm_size(node, &ranks_here);
         MPI_Comm_free(&node);
       }
-    return 1024. * kb / ranks_here;
+    return ranks_here;
+  }
+
+  unsigned int
+  cores_per_rank()
+  {
+    cpu_set_t allowed;
+    const int cores = sched_getaffinity(0, sizeof(allowed), &allowed) == 0 ? CPU_COUNT(&allowed) : 1;
+    return std::max(1u, unsigned(cores) / ranks_on_this_machine());
   }
 
   void

@@ -467,3 +467,14 @@ granular_dg_test(network/source_vertex_draining PRM network/source_vertex.prm
 # accepted and ignored): alpha on a linear edge.
 granular_dg_test(network/edge_alpha_on_linear PRM ../prm/network_example_7_3.prm
   ARGS --set "Network/Edge 1/alpha=2" EXIT 2 KEEP_OUTPUT)
+# The pieces of a VTU snapshot are compressed by one thread per core the
+# rank may use, and written in order: the 6 x 6 city grid at 17,000 cells per
+# unit length and p = 2 (4,284,072 points: two pieces, the first of 2^22)
+# writes the same file, byte for byte, bound to one core (taskset -c 0: one
+# writer thread) and on all cores (tests/network/vtu_threads.py).
+granular_dg_test(network/vtu_threads EXE ${TEST_PYTHON}
+  ARGS ${CMAKE_CURRENT_SOURCE_DIR}/network/vtu_threads.py $<TARGET_FILE:granular_dg>
+       ${CMAKE_CURRENT_SOURCE_DIR}/../prm/network_city_grid.prm
+       --set "Network/cells per unit length=17000" --set "Network/edge profiles=none"
+       --set "Time stepping/final time=5e-6" --set "Output/output times=5e-6"
+  COMPARE stdout KEEP_OUTPUT NUMDIFF -a 0 -r 0)

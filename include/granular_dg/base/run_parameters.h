@@ -108,6 +108,17 @@ namespace granular_dg
   double
   available_memory_per_rank();
 
+  /// The MPI ranks on this machine (1 without MPI). Collective.
+  unsigned int
+  ranks_on_this_machine();
+
+  /// The cores this process may run on (its affinity mask: 1 for a rank
+  /// that mpirun bound to a core) shared by the ranks on this machine, at
+  /// least 1: the threads a rank may start without oversubscribing the
+  /// machine. Collective.
+  unsigned int
+  cores_per_rank();
+
   /// The peak resident set size of this process (VmHWM of
   /// /proc/self/status) in bytes, 0 if it cannot be read.
   double

@@ -77,6 +77,10 @@ namespace granular_dg::network
     Profiles      profiles              = Profiles::per_edge;
     /// whether solution-NNNN.vtu are written
     bool          write_vtu = true;
+    /// the pieces of a VTU file compressed at once, each by a thread of its
+    /// own while the next is sampled (the scene: one per core of the rank,
+    /// as many as its memory holds)
+    unsigned int  vtu_writers = 1;
   };
 
   /// The cells of every edge of graph at cells per unit length (at least one).

@@ -20,7 +20,9 @@
 #include <granular_dg/network/network.h>
 
 #include <cmath>
+#include <deque>
 #include <fstream>
+#include <future>
 #include <sstream>
 
 namespace granular_dg::network
@@ -37,14 +39,12 @@ namespace granular_dg::network
     /// u, f(u), the edge coordinate and the edge number at each (points of a
     /// DataOutBase patch: n_subdivisions + 1 of them, in order).
     inline DataOutBase::Patch<1, 2>
-    line_patch(const std::vector<Point<2>> &points, const std::vector<std::array<double, 4>> &values,
-               const unsigned int index)
+    line_patch(const std::vector<Point<2>> &points, const std::vector<std::array<double, 4>> &values)
     {
       DataOutBase::Patch<1, 2> patch;
       patch.vertices[0]          = points.front();
       patch.vertices[1]          = points.back();
       patch.n_subdivisions       = points.size() - 1;
-      patch.patch_index          = index;
       patch.points_are_available = true;
       patch.reference_cell       = ReferenceCells::get_hypercube<1>();
       patch.data.reinit(4 + 2, points.size());
@@ -72,6 +72,87 @@ namespace granular_dg::network
     }
   } // namespace internal
 
+  namespace internal
+  {
+    /// The pieces of a VTU file (between deal.II's write_vtu_header() and
+    /// write_vtu_footer()), about vtu_piece_points points each, so that the
+    /// writer's buffers (about 110 bytes per point) stay bounded on large
+    /// graphs. With writers > 1, that many pieces are compressed at once
+    /// (write_vtu_main() each into a text of its own) while the caller
+    /// samples the next, and written in order: the same file as one writer's.
+    class VtuPieces
+    {
+    public:
+      VtuPieces(std::ostream &out, const DataOutBase::VtkFlags &flags, const unsigned int writers)
+        : out(out)
+        , first_flags(flags)
+        // (the time and cycle as field data of the first piece only)
+        , later_flags(vtu_flags(std::numeric_limits<double>::min(),
+                                std::numeric_limits<unsigned int>::min()))
+        , writers(writers)
+      {}
+
+      /// patch into the current piece, which is written once it is full
+      void
+      add(DataOutBase::Patch<1, 2> &&patch)
+      {
+        patch.patch_index = patches.size();
+        n_points += patch.data.n_cols();
+        patches.push_back(std::move(patch));
+        if (n_points >= vtu_piece_points)
+          write_piece();
+      }
+
+      /// the last piece (an empty one if there was none), and every piece
+      /// still being compressed
+      void
+      finish()
+      {
+        if (!patches.empty() || n_pieces == 0)
+          write_piece();
+        while (!compressing.empty())
+          write_oldest();
+      }
+
+    private:
+      void
+      write_piece()
+      {
+        const DataOutBase::VtkFlags &flags = n_pieces == 0 ? first_flags : later_flags;
+        if (writers == 1)
+          DataOutBase::write_vtu_main(patches, vtu_fields, {}, flags, out);
+        else
+          {
+            if (compressing.size() == writers)
+              write_oldest();
+            compressing.push_back(
+              std::async(std::launch::async, [piece = std::move(patches), flags]() {
+                std::ostringstream text;
+                DataOutBase::write_vtu_main(piece, vtu_fields, {}, flags, text);
+                return text.str();
+              }));
+          }
+        patches.clear();
+        n_points = 0;
+        ++n_pieces;
+      }
+
+      void
+      write_oldest()
+      {
+        out << compressing.front().get();
+        compressing.pop_front();
+      }
+
+      std::ostream                         &out;
+      const DataOutBase::VtkFlags           first_flags, later_flags;
+      const unsigned int                    writers;
+      std::vector<DataOutBase::Patch<1, 2>> patches;
+      std::size_t                           n_points = 0, n_pieces = 0;
+      std::deque<std::future<std::string>>  compressing;
+    };
+  } // namespace internal
+
   template <typename Law>
   void
   NetworkProblem<Law>::write_vtu(const std::string &directory, const std::string &name,
@@ -80,32 +161,12 @@ namespace granular_dg::network
   {
     // one patch per edge through all its sample points (the points of a
     // face appear twice, once with each cell's trace: the patch has a line
-    // of length 0 there), then one per vertex; written in pieces of about
-    // vtu_piece_points points, so the writer's buffers (about
-    // 110 bytes per point) stay bounded on large graphs
-    const GraphDrawing                     embed(net);
-    const auto flags        = internal::vtu_flags(time, index);
-    const auto later_pieces = internal::vtu_flags(std::numeric_limits<double>::min(),
-                                                  std::numeric_limits<unsigned int>::min());
-    std::vector<DataOutBase::Patch<1, 2>> patches;
-    std::size_t                            n_points = 0, n_pieces = 0;
+    // of length 0 there), then one per vertex, in pieces (VtuPieces)
+    const GraphDrawing embed(net);
+    const auto         flags = internal::vtu_flags(time, index);
     write_to_file(directory + "/" + name, [&](std::ostream &out) {
-      // (a rank without edges or vertices writes one empty piece)
-      const auto write_piece = [&]() {
-        // (the time and cycle as field data of the first piece only)
-        DataOutBase::write_vtu_main(patches, internal::vtu_fields, {},
-                                    n_pieces == 0 ? flags : later_pieces, out);
-        patches.clear();
-        n_points = 0;
-        ++n_pieces;
-      };
-      const auto add = [&](DataOutBase::Patch<1, 2> &&patch) {
-        n_points += patch.data.n_cols();
-        patches.push_back(std::move(patch));
-        if (n_points >= vtu_piece_points)
-          write_piece();
-      };
       DataOutBase::write_vtu_header(out, flags);
+      internal::VtuPieces                pieces(out, flags, options.vtu_writers);
       std::vector<Point<2>>              points;
       std::vector<std::array<double, 4>> values;
       for (unsigned int k = 0; k < net.edges.size(); ++k)
@@ -119,7 +180,7 @@ namespace granular_dg::network
                 points.emplace_back(p[0], p[1]);
                 values.push_back({{value, laws[k].value(value), x, double(k + 1)}});
               }
-            add(internal::line_patch(points, values, patches.size()));
+            pieces.add(internal::line_patch(points, values));
           }
       // every vertex this rank reports: a patch of length 0 with its value
       // (edge number 0)
@@ -127,12 +188,11 @@ namespace granular_dg::network
         if (ranks->reports_vertex(v))
           {
             const Point<2> &p = embed.vertex(v);
-            add(internal::line_patch({p, p},
-                                     {{{vertices[v], 0., 0., 0.}}, {{vertices[v], 0., 0., 0.}}},
-                                     patches.size()));
+            pieces.add(internal::line_patch(
+              {p, p}, {{{vertices[v], 0., 0., 0.}}, {{vertices[v], 0., 0., 0.}}}));
           }
-      if (!patches.empty() || n_pieces == 0)
-        write_piece();
+      // (a rank without edges or vertices writes one empty piece)
+      pieces.finish();
       DataOutBase::write_vtu_footer(out);
     });
   }

@@ -227,8 +227,9 @@ namespace granular_dg::network
     /// whole) and, on rank 0, the profiles of the whole network. It names
     /// the number of cells per unit length (of a convergence study:
     /// Convergence/cells), or the graph file when its edges take most of the
-    /// memory.
-    void
+    /// memory. Returns how many VTU pieces the memory holds at once (at
+    /// least 1; collective).
+    unsigned int
     require_network_fits(const Case &c, const RunParameters &common)
     {
       const bool study = common.convergence;
@@ -257,19 +258,21 @@ namespace granular_dg::network
                                                             std::max(2u, degree + 1);
       const double piece_points =
         std::min(rank_cells * points, double(vtu_piece_points) + longest * points);
+      const double piece_bytes =
+        snapshots && c.options.write_vtu ? piece_points * vtu_bytes_per_point : 0.;
       const double snapshot_bytes =
-        !snapshots ? 0. :
-                     (c.options.write_vtu ? piece_points * vtu_bytes_per_point : 0.) +
-                       (c.options.profiles != Profiles::none ?
-                          points * total * profile_bytes_per_point :
-                          0.);
+        piece_bytes + (snapshots && c.options.profiles != Profiles::none ?
+                         points * total * profile_bytes_per_point :
+                         0.);
       const double needed = edge_bytes + cell_bytes + snapshot_bytes;
       // the smallest over the ranks: they all refuse, or none
       const double available = Utilities::MPI::job_supports_mpi() ?
                                  Utilities::MPI::min(available_memory_per_rank(), MPI_COMM_WORLD) :
                                  available_memory_per_rank();
       if (available <= 0. || needed <= available)
-        return;
+        return available > 0. && piece_bytes > 0. ?
+                 1 + std::min(1e3, std::floor((available - needed) / piece_bytes)) :
+                 1;
       const auto &files    = c.input.graph.files;
       const bool  by_edges = edge_bytes > cell_bytes && !files.empty();
       require(false,
@@ -285,6 +288,7 @@ namespace granular_dg::network
                 "), more than the " + format_bytes(available) +
                 " available (MemAvailable): use fewer cells per unit length, fewer edges or a "
                 "lower degree, or run on more machines (MPI ranks)");
+      return 1;
     }
 
     /// One warning line on stderr (rank 0) when an edge is so short that its
@@ -406,7 +410,7 @@ namespace granular_dg::network
         input.graph.edges.size() <= most_edges_with_profiles ? Profiles::per_edge :
                                                                Profiles::none;
       // before any edge is discretised (below for initial_data, then by run())
-      require_network_fits(*this, common);
+      options.vtu_writers = std::min(cores_per_rank(), require_network_fits(*this, common));
       build_exact_solution(common);
     }
 
