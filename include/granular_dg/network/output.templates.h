@@ -23,7 +23,9 @@
 #include <deque>
 #include <fstream>
 #include <future>
+#include <memory>
 #include <sstream>
+#include <system_error>
 
 namespace granular_dg::network
 {
@@ -125,12 +127,22 @@ namespace granular_dg::network
           {
             if (compressing.size() == writers)
               write_oldest();
-            compressing.push_back(
-              std::async(std::launch::async, [piece = std::move(patches), flags]() {
-                std::ostringstream text;
-                DataOutBase::write_vtu_main(piece, vtu_fields, {}, flags, text);
-                return text.str();
-              }));
+            const auto piece = std::make_shared<const Patches>(std::move(patches));
+            try
+              {
+                compressing.push_back(std::async(std::launch::async, [piece, flags]() {
+                  std::ostringstream text;
+                  DataOutBase::write_vtu_main(*piece, vtu_fields, {}, flags, text);
+                  return text.str();
+                }));
+              }
+            catch (const std::system_error &)
+              {
+                // (no thread to be had) the pieces before it, then this one
+                while (!compressing.empty())
+                  write_oldest();
+                DataOutBase::write_vtu_main(*piece, vtu_fields, {}, flags, out);
+              }
           }
         patches.clear();
         n_points = 0;
@@ -144,10 +156,11 @@ namespace granular_dg::network
         compressing.pop_front();
       }
 
+      using Patches = std::vector<DataOutBase::Patch<1, 2>>;
       std::ostream                         &out;
       const DataOutBase::VtkFlags           first_flags, later_flags;
       const unsigned int                    writers;
-      std::vector<DataOutBase::Patch<1, 2>> patches;
+      Patches                               patches;
       std::size_t                           n_points = 0, n_pieces = 0;
       std::deque<std::future<std::string>>  compressing;
     };
