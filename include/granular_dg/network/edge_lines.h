@@ -79,8 +79,7 @@ namespace granular_dg::network
     /// values of all edges (cells times modes)
     std::size_t  size() const { return first.back() * modes; }
     unsigned int n_cells(const unsigned int e) const { return cells[e]; }
-    double       cell_size(const unsigned int e) const { return h[e]; }
-    /// n_cells() and cell_size() of every edge
+    /// n_cells() and the cell size of every edge
     const std::vector<unsigned int> &cell_counts() const { return cells; }
     const std::vector<double>       &cell_sizes() const { return h; }
     /// the array index of mode 0 of cell c of edge e

@@ -47,7 +47,6 @@ namespace granular_dg::network
     /// The rank that reports vertex v (the owner of its first end's edge):
     /// its value enters sums over the network once.
     bool reports_vertex(unsigned int v) const { return vertex_reporter[v] == my_rank; }
-    unsigned int vertex_rank(unsigned int v) const { return vertex_reporter[v]; }
     /// vertices whose edges lie on more than one rank
     unsigned int n_cut_vertices() const { return n_cut; }
     /// whether a cut vertex has no control volume (its value then follows
