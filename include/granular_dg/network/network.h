@@ -58,8 +58,9 @@ namespace granular_dg::network
     none
   };
 
-  /// The points of one piece of a VTU file, above which the file gets
-  /// another piece of whole edges (VTK's UnstructuredGrid format allows many;
+  /// The most points of one piece of a VTU file (about: a piece ends with
+  /// the edge that fills it), above which the file is written in pieces of
+  /// whole edges and equal size (VTK's UnstructuredGrid format allows many;
   /// ParaView reads them as one data set): deal.II's writer holds ~110 bytes
   /// per point of the piece it writes. (ParaView 5.11 opened the 10^6-edge
   /// city grid's 49 M points in 46 s as 12 pieces, 48 s as one, 180 s as

@@ -77,21 +77,25 @@ namespace granular_dg::network
   namespace internal
   {
     /// The pieces of a VTU file (between deal.II's write_vtu_header() and
-    /// write_vtu_footer()), about vtu_piece_points points each, so that the
-    /// writer's buffers (about 110 bytes per point) stay bounded on large
-    /// graphs. With writers > 1, that many pieces are compressed at once
-    /// (write_vtu_main() each into a text of its own) while the caller
-    /// samples the next, and written in order: the same file as one writer's.
+    /// write_vtu_footer()) of n_points points in all: as few as hold at most
+    /// about vtu_piece_points each, so that the writer's buffers (about 110
+    /// bytes per point) stay bounded on large graphs, and of equal size (a
+    /// piece ends with the edge that fills it). With writers > 1, that many
+    /// pieces are compressed at once (write_vtu_main() each into a text of
+    /// its own) while the caller samples the next, and written in order:
+    /// the same file as one writer's.
     class VtuPieces
     {
     public:
-      VtuPieces(std::ostream &out, const DataOutBase::VtkFlags &flags, const unsigned int writers)
+      VtuPieces(std::ostream &out, const DataOutBase::VtkFlags &flags,
+                const std::size_t total_points, const unsigned int writers)
         : out(out)
         , first_flags(flags)
         // (the time and cycle as field data of the first piece only)
         , later_flags(vtu_flags(std::numeric_limits<double>::min(),
                                 std::numeric_limits<unsigned int>::min()))
         , writers(writers)
+        , piece_points(equal_pieces(total_points))
       {}
 
       /// patch into the current piece, which is written once it is full
@@ -101,7 +105,7 @@ namespace granular_dg::network
         patch.patch_index = patches.size();
         n_points += patch.data.n_cols();
         patches.push_back(std::move(patch));
-        if (n_points >= vtu_piece_points)
+        if (n_points >= piece_points)
           write_piece();
       }
 
@@ -117,6 +121,16 @@ namespace granular_dg::network
       }
 
     private:
+      /// the points of each of the fewest pieces of total_points points with
+      /// at most vtu_piece_points each (at least 1)
+      static std::size_t
+      equal_pieces(const std::size_t total_points)
+      {
+        const std::size_t pieces = (total_points + vtu_piece_points - 1) / vtu_piece_points;
+        return pieces <= 1 ? std::max<std::size_t>(1, total_points) :
+                             (total_points + pieces - 1) / pieces;
+      }
+
       void
       write_piece()
       {
@@ -160,6 +174,7 @@ namespace granular_dg::network
       std::ostream                         &out;
       const DataOutBase::VtkFlags           first_flags, later_flags;
       const unsigned int                    writers;
+      const std::size_t                     piece_points;
       Patches                               patches;
       std::size_t                           n_points = 0, n_pieces = 0;
       std::deque<std::future<std::string>>  compressing;
@@ -174,12 +189,18 @@ namespace granular_dg::network
   {
     // one patch per edge through all its sample points (the points of a
     // face appear twice, once with each cell's trace: the patch has a line
-    // of length 0 there), then one per vertex, in pieces (VtuPieces)
+    // of length 0 there), then one of 2 points per vertex, in pieces
+    // (VtuPieces)
     const GraphDrawing embed(net);
-    const auto         flags = internal::vtu_flags(time, index);
+    const auto         flags    = internal::vtu_flags(time, index);
+    std::size_t        n_points = 0;
+    for (const unsigned int k : ranks->edges())
+      n_points += std::size_t(edge_cells[k]) * vtu_points();
+    for (unsigned int v = 0; v < net.vertices.size(); ++v)
+      n_points += ranks->reports_vertex(v) ? 2 : 0;
     write_to_file(directory + "/" + name, [&](std::ostream &out) {
       DataOutBase::write_vtu_header(out, flags);
-      internal::VtuPieces                pieces(out, flags, options.vtu_writers);
+      internal::VtuPieces                pieces(out, flags, n_points, options.vtu_writers);
       std::vector<Point<2>>              points;
       std::vector<std::array<double, 4>> values;
       for (unsigned int k = 0; k < net.edges.size(); ++k)
