@@ -72,10 +72,7 @@ namespace granular_dg::network
       flags.compression_level   = DataOutBase::VtkFlags::best_speed;
       return flags;
     }
-  } // namespace internal
 
-  namespace internal
-  {
     /// The pieces of a VTU file (between deal.II's write_vtu_header() and
     /// write_vtu_footer()) of n_points points in all: as few as hold at most
     /// about vtu_piece_points each, so that the writer's buffers (about 110

@@ -227,8 +227,9 @@ namespace granular_dg::network
     /// whole) and, on rank 0, the profiles of the whole network. It names
     /// the number of cells per unit length (of a convergence study:
     /// Convergence/cells), or the graph file when its edges take most of the
-    /// memory. Returns how many VTU pieces the memory holds at once (at
-    /// least 1; collective).
+    /// memory. Returns how many VTU pieces may be compressed at once: at
+    /// least 1, more where the memory holds one more piece beside each
+    /// (the next one, sampled meanwhile). Collective.
     unsigned int
     require_network_fits(const Case &c, const RunParameters &common)
     {
@@ -271,7 +272,7 @@ namespace granular_dg::network
                                  available_memory_per_rank();
       if (available <= 0. || needed <= available)
         return available > 0. && piece_bytes > 0. ?
-                 1 + std::min(1e3, std::floor((available - needed) / piece_bytes)) :
+                 std::max(1., std::min(1e3, std::floor((available - needed) / piece_bytes))) :
                  1;
       const auto &files    = c.input.graph.files;
       const bool  by_edges = edge_bytes > cell_bytes && !files.empty();
