@@ -469,7 +469,7 @@ granular_dg_test(network/edge_alpha_on_linear PRM ../prm/network_example_7_3.prm
   ARGS --set "Network/Edge 1/alpha=2" EXIT 2 KEEP_OUTPUT)
 # The pieces of a VTU snapshot are compressed by one thread per core the
 # rank may use, and written in order: the 6 x 6 city grid at 17,000 cells per
-# unit length and p = 2 (4,284,072 points: two pieces, the first of 2^22)
+# unit length and p = 2 (4,284,072 points: two pieces of 2,193,000 and 2,091,072)
 # writes the same file, byte for byte, bound to one core (taskset -c 0: one
 # writer thread) and on all cores (tests/network/vtu_threads.py).
 granular_dg_test(network/vtu_threads EXE ${TEST_PYTHON}
