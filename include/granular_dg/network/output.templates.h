@@ -2,7 +2,8 @@
 
 /**
  * The network's output (solution-NNNN.vtu through deal.II's DataOutBase with
- * every edge drawn in the plane, under MPI one piece per rank and a .pvtu;
+ * every edge drawn in the plane, in pieces (VtuPieces), under MPI one file
+ * per rank and a .pvtu;
  * profile-NNNN-edge-K.csv), a single run on the TimeLoop, and the
  * convergence study: a scene includes this file once and instantiates
  * NetworkProblem<Law>::write_snapshot(), run_network() and
@@ -74,7 +75,7 @@ namespace granular_dg::network
     }
 
     /// The pieces of a VTU file (between deal.II's write_vtu_header() and
-    /// write_vtu_footer()) of n_points points in all: as few as hold at most
+    /// write_vtu_footer()) of total_points points in all: as few as hold at most
     /// about vtu_piece_points each, so that the writer's buffers (about 110
     /// bytes per point) stay bounded on large graphs, and of equal size (a
     /// piece ends with the edge that fills it). With writers > 1, that many
