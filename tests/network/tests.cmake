@@ -224,9 +224,12 @@ granular_dg_test(network/ring_mass_dg PRM network/ring.prm ${ring_files}
 # an edge id 2.5 is not an integer edge id; subnormal: a flux
 # parameter of 1e-308 is not of normal magnitude; isolated_vertex: a
 # vertex only the vertex file lists is blamed on that file and its line;
-# burgers_parameter: a parameter on a burgers road, which has none).
+# burgers_parameter: a parameter on a burgers road, which has none;
+# unclosed_quote: a field in double quotes without its closing quote;
+# unquoted_commas: an expression with a comma outside double quotes, which
+# splits it, blamed on its unbalanced parenthesis).
 foreach(bad duplicate_id fractional_edge_id negative_length nonfinite subnormal self_loop
-        bad_header hex_id burgers_parameter)
+        bad_header hex_id burgers_parameter unclosed_quote unquoted_commas)
   granular_dg_test(network/graph_${bad} PRM network/ring.prm
     COPY network/ring_${bad}.csv network/ring_vertices.csv
     ARGS --set "Network/graph file=ring_${bad}.csv" EXIT 2 KEEP_OUTPUT)
@@ -242,15 +245,19 @@ granular_dg_test(network/graph_not_a_file PRM network/ring.prm
   ARGS --set "Network/graph file=/dev/zero" EXIT 2 KEEP_OUTPUT)
 # Graph and vertex files written as users' tools write them read as the
 # plain ring: the run completes with the ring's cells, vertices and final
-# vertex values (1e-12 relative; the three outputs are the same file).
+# vertex values (1e-12 relative; the four outputs are the same file).
 #   bom: saved as "CSV UTF-8" (a byte-order mark, CRLF line ends, no
 #        comment line);
 #   cr: the line ends of an old Mac (CR alone, "CSV (Macintosh)");
 #   irregular: columns in another order, vertex ids 10, 20, 30 and vertex
 #        rows out of order, blanks and a tab around fields, blank and
 #        indented comment lines between rows, empty last fields, no line end
-#        after the last row.
-foreach(form bom cr irregular)
+#        after the last row;
+#   quoted: every field in double quotes (as spreadsheets and pandas'
+#        QUOTE_ALL write them), blanks around quotes, empty fields as "",
+#        and expressions with commas in them (min, max) that give the ring's
+#        constants.
+foreach(form bom cr irregular quoted)
   granular_dg_test(network/graph_${form} PRM network/ring.prm
     COPY network/ring_${form}.csv network/ring_vertices_${form}.csv
     ARGS --set "Network/graph file=ring_${form}.csv"

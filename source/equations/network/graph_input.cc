@@ -224,18 +224,45 @@ namespace granular_dg::network
       return a == std::string_view::npos ? std::string_view() : s.substr(a, b - a + 1);
     }
 
-    /// the fields of a line, trimmed: split at commas, the empty field after
-    /// a comma that ends the line dropped (as std::getline splits)
-    void
-    split_fields(const std::string_view line, std::vector<std::string_view> &fields)
+    /// The fields of a line as RFC 4180 writes them, trimmed: split at
+    /// commas outside double quotes. A field in double quotes (as spreadsheets
+    /// and pandas write text) may hold commas, and "" stands for a quote; its
+    /// text is unquoted in place (line lies in the table's own text). The
+    /// empty field after a comma that ends the line is dropped (as
+    /// std::getline splits). False for a quote not closed on its line or
+    /// followed by more than blanks before the next comma.
+    bool
+    split_fields(char *const line, const std::size_t size, std::vector<std::string_view> &fields)
     {
       fields.clear();
+      const std::string_view all(line, size);
       for (std::size_t start = 0;;)
         {
-          const auto comma = line.find(',', start);
-          fields.push_back(trim(line.substr(start, comma - start)));
-          if (comma == std::string_view::npos || comma + 1 == line.size())
-            return;
+          std::size_t       comma;
+          const std::size_t open = all.find_first_not_of(" \t\r", start);
+          if (open != all.npos && all[open] == '"')
+            {
+              char       *out = line + open;
+              std::size_t i   = open + 1;
+              for (; i < size && !(all[i] == '"' && (i + 1 == size || all[i + 1] != '"')); ++i)
+                {
+                  i += all[i] == '"';
+                  *out++ = all[i];
+                }
+              if (i == size)
+                return false;
+              fields.emplace_back(line + open, out - (line + open));
+              comma = all.find(',', i + 1);
+              if (!trim(all.substr(i + 1, comma - (i + 1))).empty())
+                return false;
+            }
+          else
+            {
+              comma = all.find(',', start);
+              fields.push_back(trim(all.substr(start, comma - start)));
+            }
+          if (comma == std::string_view::npos || comma + 1 == size)
+            return true;
           start = comma + 1;
         }
     }
@@ -265,7 +292,12 @@ namespace granular_dg::network
           start                       = end + 1;
           if (trim(line).empty() || trim(line)[0] == '#')
             continue;
-          split_fields(line, row);
+          // (the line as written for the message: split_fields() unquotes in place)
+          if (const std::string as_written(line.find('"') == line.npos ? "" : line);
+              !split_fields(text.data() + (line.data() - all.data()), line.size(), row))
+            require(false, parameter + " '" + file + "', line " + std::to_string(number),
+                    as_written,
+                    "a field in double quotes closed on its line, then a comma or the line's end");
           if (n_columns == 0)
             {
               for (unsigned int c = 0; c < row.size(); ++c)
@@ -288,7 +320,7 @@ namespace granular_dg::network
             require(false, parameter, file,
                     "at most " + std::to_string(n_columns) + " fields per line (line " +
                       std::to_string(number) + " has " + std::to_string(row.size()) +
-                      "; expressions must not contain commas)");
+                      "; an expression that contains commas goes in double quotes)");
           row.resize(n_columns);
           fields.insert(fields.end(), row.begin(), row.end());
           lines.push_back(number);
@@ -439,9 +471,10 @@ namespace granular_dg::network
           "id,from,to,length,flux[,parameter[,initial[,far_end[,far_end_data]]]] (from/to: a "
           "vertex id or free; to may be loop; parameter: a of linear, alpha of traffic (empty: "
           "1), empty for burgers; "
-          "initial: a number or an expression in x without commas; far_end: dirichlet or "
-          "outflow; far_end_data: a number or an expression in t). The columns may come in "
-          "any order; lines starting with # are comments.");
+          "initial: a number or an expression in x; far_end: dirichlet or "
+          "outflow; far_end_data: a number or an expression in t). A field that contains "
+          "commas, e.g. min(x, 0.5), goes in double quotes; the columns may come in any "
+          "order; lines starting with # are comments.");
     b.add("vertex file", vertex_file, Patterns::Anything(),
           "With a graph file: a CSV vertex list, id,x,y[,width_factor[,initial_value]] "
           "(positions for the drawing; width factor and initial value as in Vertex N). Without "
@@ -657,7 +690,16 @@ namespace granular_dg::network
                           at(r, ""), "parameter");
             last_flux = std::pair(law, p);
           }
-        const std::string_view far = table.get(r, far_end_c), g = table.get(r, data_c);
+        const std::string_view far = table.get(r, far_end_c), g = table.get(r, data_c),
+                               initial = table.get(r, initial_c);
+        // (an expression split at its commas: its first field lacks a parenthesis)
+        for (const auto &[name, text] :
+             {std::pair("initial", initial), std::pair("far_end_data", g)})
+          if (std::count(text.begin(), text.end(), '(') !=
+              std::count(text.begin(), text.end(), ')'))
+            require(false, at(r, name), text,
+                    "an expression with balanced parentheses (one that contains commas goes in "
+                    "double quotes)");
         e.far_end = far.empty() ? FarEnd::outflow :
                                   far_end_names.parse(at(r, "far_end"), std::string(far));
         if (!far.empty() || !g.empty())
@@ -666,7 +708,6 @@ namespace granular_dg::network
         if (g.empty() && e.far_end == FarEnd::dirichlet)
           require(false, at(r, "far_end_data"), g,
                   "the inflow state of the dirichlet end (a number or an expression in t)");
-        const std::string_view initial = table.get(r, initial_c);
         add_edge(e, f, table.line(r), initial.empty() ? "0" : initial, g.empty() ? "0" : g,
                  "initial", "far_end_data");
       }
