@@ -158,11 +158,12 @@ namespace granular_dg::network
     template <unsigned int nm>
     void raw_blending_factors(const double *src, unsigned int e) const;
     double blending_factor(unsigned int e, unsigned int c) const;
-    /// the largest speed |f'| of edge e: of its SIMD batches (lanes) and
-    /// of its other cells and vertex ends (rest), not yet divided by h
+    /// the largest speed |f'| of the edges [e0, e1) of one law: of SIMD
+    /// batches of their cells (lanes) and of their other cells and vertex
+    /// ends (rest), not yet divided by h
     template <unsigned int nm>
-    void max_speed_edge(const double *u, const double *vertex_values, unsigned int e,
-                        VectorizedArray<double> &lanes, double &rest) const;
+    void max_speed_run(const double *u, const double *vertex_values, unsigned int e0,
+                       unsigned int e1, VectorizedArray<double> &lanes, double &rest) const;
     template <unsigned int nm>
     unsigned int limit_edge(double *u, unsigned int e) const;
     template <unsigned int nm>

@@ -399,8 +399,16 @@ namespace granular_dg::network
           const double size      = h[e];
           VA           run_lanes = 0.;
           double       run_rest  = 0.;
-          for (; e < n_edges() && h[e] == size; ++e)
-            max_speed_edge<decltype(nm)::value>(u, vertex_values, e, run_lanes, run_rest);
+          while (e < n_edges() && h[e] == size)
+            {
+              // and within it the edges of one law (the city grid's streets
+              // between two avenues): one pass over their cells
+              unsigned int end = e + 1;
+              while (end < n_edges() && h[end] == size && law_of_edge[end] == law_of_edge[e])
+                ++end;
+              max_speed_run<decltype(nm)::value>(u, vertex_values, e, end, run_lanes, run_rest);
+              e = end;
+            }
           lanes  = std::max(lanes, run_lanes / VA(size));
           result = std::max(result, run_rest / size);
         }
@@ -410,20 +418,22 @@ namespace granular_dg::network
     });
   }
 
-  /// dg::LineOperator::max_speed_impl() on edge e: the largest speed of its
-  /// cells (SIMD batches into lanes, the rest into rest) and of the vertex
-  /// values at its vertex ends (into rest); the caller divides by h
-  /// (division by h > 0 is monotone: the same maximum as dividing every
-  /// speed). With the law fixed at compile time (with_fixed_law()): no
-  /// branch on it at every point. Inlined: as a call its maxima go through
-  /// memory in every batch.
+  /// dg::LineOperator::max_speed_impl() on the edges [e0, e1), which share
+  /// their law: the largest speed of their cells, which lie one after the
+  /// other (SIMD batches into lanes, a batch may span two edges; the rest
+  /// into rest), and of the vertex values at their vertex ends (into rest);
+  /// the caller divides by h (division by h > 0 is monotone: the same
+  /// maximum as dividing every speed). With the law fixed at compile time
+  /// (with_fixed_law()): no branch on it at every point. Inlined: as a call
+  /// its maxima go through memory.
   template <typename Law>
   template <unsigned int nm>
   DEAL_II_ALWAYS_INLINE inline void
-  EdgeLines<Law>::max_speed_edge(const double *src, const double *vertex_values,
-                                 const unsigned int e, VA &lanes, double &rest) const
+  EdgeLines<Law>::max_speed_run(const double *src, const double *vertex_values,
+                                const unsigned int e0, const unsigned int e1, VA &lanes,
+                                double &rest) const
   {
-    with_fixed_law(edge_law(e), [&](const auto &f) {
+    with_fixed_law(edge_law(e0), [&](const auto &f) {
       const auto cell_speed = [&](const auto *u) {
         using Number    = std::remove_cv_t<std::remove_pointer_t<decltype(u)>>;
         // (degree 0: every point has the cell's value)
@@ -434,19 +444,19 @@ namespace granular_dg::network
                                                  Number(0.)));
         return cell_max;
       };
-      unsigned int c = 0;
-      if (W > 1 && cells[e] >= W)
-        for (; c + W <= cells[e]; c += W)
-          {
-            VA u[nm];
-            load_cell_major<nm>(src + index(e, c), u);
-            lanes = std::max(lanes, cell_speed(u));
-          }
-      for (; c < cells[e]; ++c)
-        rest = std::max(rest, cell_speed(src + index(e, c)));
-      for (const unsigned int side : {0u, 1u})
-        if (end_kind[2 * e + side] == EndKind::vertex)
-          rest = std::max(rest, std::abs(f.derivative(vertex_values[2 * e + side])));
+      std::size_t c = first[e0];
+      for (; c + W <= first[e1]; c += W)
+        {
+          VA u[nm];
+          load_cell_major<nm>(src + c * nm, u);
+          lanes = std::max(lanes, cell_speed(u));
+        }
+      for (; c < first[e1]; ++c)
+        rest = std::max(rest, cell_speed(src + c * nm));
+      for (unsigned int e = e0; e < e1; ++e)
+        for (const unsigned int side : {0u, 1u})
+          if (end_kind[2 * e + side] == EndKind::vertex)
+            rest = std::max(rest, std::abs(f.derivative(vertex_values[2 * e + side])));
     });
   }
 
