@@ -48,6 +48,25 @@ namespace granular_dg
         out.push_back(Utilities::string_to_int(s));
       return out;
     }
+
+    /// The MPI ranks on this machine (1 without MPI): collective on its
+    /// first call, which splits MPI_COMM_WORLD by node, then remembered.
+    unsigned int
+    ranks_on_this_machine()
+    {
+      static const unsigned int ranks = [] {
+        int ranks_here = 1;
+        if (Utilities::MPI::job_supports_mpi())
+          {
+            MPI_Comm node;
+            MPI_Comm_split_type(MPI_COMM_WORLD, MPI_COMM_TYPE_SHARED, 0, MPI_INFO_NULL, &node);
+            MPI_Comm_size(node, &ranks_here);
+            MPI_Comm_free(&node);
+          }
+        return unsigned(ranks_here);
+      }();
+      return ranks;
+    }
   } // namespace
 
   void
@@ -272,20 +291,6 @@ namespace granular_dg
     if (key != "MemAvailable:")
       return 0.;
     return 1024. * kb / ranks_on_this_machine();
-  }
-
-  unsigned int
-  ranks_on_this_machine()
-  {
-    int ranks_here = 1;
-    if (Utilities::MPI::job_supports_mpi())
-      {
-        MPI_Comm node;
-        MPI_Comm_split_type(MPI_COMM_WORLD, MPI_COMM_TYPE_SHARED, 0, MPI_INFO_NULL, &node);
-        MPI_Comm_size(node, &ranks_here);
-        MPI_Comm_free(&node);
-      }
-    return ranks_here;
   }
 
   unsigned int

@@ -104,18 +104,16 @@ namespace granular_dg
                                     unsigned long max_snapshots = 100000);
 
   /// The memory this MPI rank may use: MemAvailable of /proc/meminfo shared
-  /// by the ranks on this machine (0 if it cannot be read).
+  /// by the ranks on this machine (0 if it cannot be read). Collective on
+  /// the first call of it or of cores_per_rank().
   double
   available_memory_per_rank();
-
-  /// The MPI ranks on this machine (1 without MPI). Collective.
-  unsigned int
-  ranks_on_this_machine();
 
   /// The cores this process may run on (its affinity mask: 1 for a rank
   /// that mpirun bound to a core) shared by the ranks on this machine, at
   /// least 1: the threads a rank may start without oversubscribing the
-  /// machine. Collective.
+  /// machine. Collective on the first call of it or of
+  /// available_memory_per_rank().
   unsigned int
   cores_per_rank();
 
