@@ -457,6 +457,13 @@ granular_dg_test(network/unequal_capacity_dg PRM network/unequal_capacity.prm EX
   ARGS --set Discretization/degree=2 --set "Time stepping/CFL number=0.15"
        --set Limiter/scheme=componentwise
   COMPARE summary.json:status,final_time NUMDIFF -r 1e-9)
+# Started from its discrete stationary value (Definition 4.4) instead, the
+# junction is refused at t = 0: that value, 1.19, lies beyond 1, since at every
+# value up to 1 more flows in than out; the status says that the program
+# found the value and which parameter gives one (exit 3).
+granular_dg_test(network/unequal_capacity_stationary PRM network/unequal_capacity.prm EXIT 3
+  ARGS --set "Network/vertex initial value=stationary"
+  COMPARE summary.json:status NUMDIFF -r 1e-9)
 # Traffic data outside [0, alpha] are refused at t = 0 (exit 3, initial state
 # written): initial data 1.5 on a road of capacity 1.
 granular_dg_test(network/traffic_initial_jammed PRM network/unequal_capacity.prm EXIT 3

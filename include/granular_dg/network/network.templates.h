@@ -694,12 +694,26 @@ namespace granular_dg::network
       if (const Bounded &b = vertex_range[v]; outside(s.vertices[v], b.range))
         {
           const EdgeEnd &end = b.end[s.vertices[v] > b.range[1]];
+          // (an initial value the program found, not one the user gave;
+          // the net outflow grows with u_0 for monotone fluxes)
+          std::string found;
+          if (initial && !net.vertices[v].initial_value)
+            found = std::string(junctions[v].width() > 0 ?
+                                  "; it is the discrete stationary value of the edges' "
+                                  "initial traces (Definition 4.4), so" :
+                                  "; it balances the fluxes of the edges' initial traces, so") +
+                    " at every value in that range " +
+                    (s.vertices[v] > b.range[1] ? "more flows in than out" :
+                                                  "less flows in than out") +
+                    (junctions[v].width() > 0 ?
+                       " (an initial value starts the run: Network/vertex initial value)" :
+                       "");
           throw failure(stage_time, -1 - int(v), 0., s.vertices[v],
                         "vertex value outside " +
                           interval(laws[end.edge].vertex_range(end.incoming)) +
                           ", where the flux at the " + (end.incoming ? "end" : "start") +
                           " of " + net.edges[end.edge].label + " (" +
-                          laws[end.edge].describe() + ") is physical");
+                          laws[end.edge].describe() + ") is physical" + found);
         }
   }
 
