@@ -393,24 +393,19 @@ namespace granular_dg::network
       double result = 0;
       for (unsigned int e = 0; e < n_edges();)
         {
-          // a run of edges of one cell size (the whole city grid): their
+          // a run of edges of one cell size and one law (the city grid's
+          // streets between two avenues): one pass over their cells, their
           // largest speeds in registers, divided once (a division by h > 0
           // is monotone: the same maximum to the bit as dividing each)
-          const double size      = h[e];
-          VA           run_lanes = 0.;
-          double       run_rest  = 0.;
-          while (e < n_edges() && h[e] == size)
-            {
-              // and within it the edges of one law (the city grid's streets
-              // between two avenues): one pass over their cells
-              unsigned int end = e + 1;
-              while (end < n_edges() && h[end] == size && law_of_edge[end] == law_of_edge[e])
-                ++end;
-              max_speed_run<decltype(nm)::value>(u, vertex_values, e, end, run_lanes, run_rest);
-              e = end;
-            }
-          lanes  = std::max(lanes, run_lanes / VA(size));
-          result = std::max(result, run_rest / size);
+          unsigned int end = e + 1;
+          while (end < n_edges() && h[end] == h[e] && law_of_edge[end] == law_of_edge[e])
+            ++end;
+          VA     run_lanes = 0.;
+          double run_rest  = 0.;
+          max_speed_run<decltype(nm)::value>(u, vertex_values, e, end, run_lanes, run_rest);
+          lanes  = std::max(lanes, run_lanes / VA(h[e]));
+          result = std::max(result, run_rest / h[e]);
+          e      = end;
         }
       for (unsigned int l = 0; l < W; ++l)
         result = std::max(result, lanes[l]);
